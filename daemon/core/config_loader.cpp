@@ -1,0 +1,220 @@
+#include "core/config_loader.h"
+
+#include <google/protobuf/io/tokenizer.h>
+#include <google/protobuf/text_format.h>
+#include <sys/un.h>
+
+#include <cctype>
+#include <charconv>
+#include <fstream>
+#include <optional>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "core/config_error.h"
+
+namespace acomms::core {
+
+// Defined in the generated file that embeds packaging/acommsd.conf.
+const std::vector<std::pair<std::string_view, std::string_view>>& embedded_example_config();
+
+namespace {
+
+namespace pb = google::protobuf;
+
+// Keeps the first error the text-format parser reports (later ones are
+// usually consequences of it).
+class FirstErrorCollector : public pb::io::ErrorCollector {
+ public:
+  void AddError(int line, pb::io::ColumnNumber column, const std::string& message) override {
+    if (!error_) error_ = Located{line, column, message};
+  }
+  struct Located {
+    int line;  // 0-based, as the tokenizer counts
+    int column;
+    std::string message;
+  };
+  const std::optional<Located>& error() const { return error_; }
+
+ private:
+  std::optional<Located> error_;
+};
+
+std::vector<std::string> lines_of(std::string_view text) {
+  std::vector<std::string> lines;
+  std::istringstream in{std::string(text)};
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// Where a parse error really is. The parser reports the token it stopped at,
+// which for a bad value is often the next line, and its messages name the
+// field only sometimes ('Unknown enumeration value of "X" for field "y"'),
+// never for a bad literal ("Expected integer, got: abc"). So: take the field
+// the message names, else the last `name:` / `name {` at or before the
+// error, and point at that name.
+struct ParseErrorPlace {
+  int line;    // 1-based
+  int column;  // 1-based
+  std::string field;
+};
+
+ParseErrorPlace place_parse_error(std::string_view text, int line0, int column0,
+                                  const std::string& message) {
+  static const std::regex named_in_message(R"re(field (?:named )?"([A-Za-z_][A-Za-z0-9_]*)")re");
+  static const std::regex field_token(R"(([A-Za-z_][A-Za-z0-9_]*)\s*(:|\{))");
+  std::vector<std::string> lines = lines_of(text);
+  std::smatch match;
+  std::string wanted;
+  if (std::regex_search(message, match, named_in_message)) wanted = match[1];
+
+  // Scan back from the error for a field token (the named one, if any).
+  for (int line = std::min<int>(line0, static_cast<int>(lines.size()) - 1); line >= 0; --line) {
+    const std::string& current = lines[line];
+    int limit = line == line0 ? column0 : static_cast<int>(current.size());
+    ParseErrorPlace best{0, 0, ""};
+    for (std::sregex_iterator it(current.begin(), current.end(), field_token), end; it != end;
+         ++it) {
+      if (it->position(1) > limit) break;
+      if (wanted.empty() || (*it)[1] == wanted) {
+        best = {line + 1, static_cast<int>(it->position(1)) + 1, (*it)[1]};
+      }
+    }
+    if (!best.field.empty()) return best;
+    if (wanted.empty()) break;  // only the error's own line can hold an unnamed field
+  }
+  return {line0 + 1, column0 + 1, wanted};
+}
+
+// Location of a (possibly nested) field in the parsed text, for errors found
+// after parsing. Falls back to "no location" for fields absent from the text.
+struct Place {
+  int line = 0;
+  int column = 0;
+};
+
+Place place_of(const pb::TextFormat::ParseInfoTree& tree, const pb::Descriptor* type,
+               const std::vector<std::string>& path) {
+  const pb::TextFormat::ParseInfoTree* node = &tree;
+  for (size_t i = 0; i < path.size(); ++i) {
+    const pb::FieldDescriptor* field = type->FindFieldByName(path[i]);
+    if (field == nullptr || node == nullptr) return {};
+    if (i + 1 == path.size()) {
+      pb::TextFormat::ParseLocation loc = node->GetLocation(field, -1);
+      if (loc.line < 0) return {};
+      return {loc.line + 1, loc.column + 1};
+    }
+    node = node->GetTreeForNested(field, -1);
+    type = field->message_type();
+  }
+  return {};
+}
+
+bool valid_port(std::string_view text) {
+  unsigned port = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), port);
+  return ec == std::errc() && end == text.data() + text.size() && port >= 1 && port <= 65535;
+}
+
+// "host:port" or "[v6]:port"; returns the reason it is not, or empty.
+std::string tcp_address_problem(const std::string& address) {
+  size_t colon = address.rfind(':');
+  if (colon == std::string::npos || colon == 0) {
+    return "\"" + address + "\" is not host:port (for example \"127.0.0.1:50051\")";
+  }
+  std::string host = address.substr(0, colon);
+  if (host.front() == '[' && host.back() != ']') return "\"" + address + "\": unclosed '[' in IPv6 host";
+  if (!valid_port(std::string_view(address).substr(colon + 1))) {
+    return "\"" + address + "\": port must be a number from 1 to 65535";
+  }
+  return {};
+}
+
+bool valid_plugin_name(const std::string& name) {
+  static const std::regex pattern("[a-z][a-z0-9_]*");
+  return std::regex_match(name, pattern);
+}
+
+void validate(const v1::Config& config, const pb::TextFormat::ParseInfoTree& tree,
+              const std::string& file_name) {
+  auto fail = [&](const std::vector<std::string>& path, const std::string& problem) {
+    Place where = place_of(tree, v1::Config::descriptor(), path);
+    std::string dotted;
+    for (const auto& part : path) dotted += (dotted.empty() ? "" : ".") + part;
+    throw ConfigError(file_name, where.line, where.column, dotted, problem);
+  };
+  if (!config.grpc().tcp_listen().empty()) {
+    std::string problem = tcp_address_problem(config.grpc().tcp_listen());
+    if (!problem.empty()) fail({"grpc", "tcp_listen"}, problem);
+  }
+  if (config.grpc().unix_socket().size() >= sizeof(sockaddr_un::sun_path)) {
+    fail({"grpc", "unix_socket"},
+         "path is " + std::to_string(config.grpc().unix_socket().size()) +
+             " bytes; unix sockets allow at most " +
+             std::to_string(sizeof(sockaddr_un::sun_path) - 1));
+  }
+  if (!config.driver().name().empty() && !valid_plugin_name(config.driver().name())) {
+    fail({"driver", "name"}, "\"" + config.driver().name() +
+                                 "\" is not a driver name (lowercase letters, digits, '_')");
+  }
+  if (!config.mac().name().empty() && !valid_plugin_name(config.mac().name())) {
+    fail({"mac", "name"},
+         "\"" + config.mac().name() + "\" is not a MAC name (lowercase letters, digits, '_')");
+  }
+}
+
+void fill_defaults(v1::Config& config) {
+  if (config.data_dir().empty()) config.set_data_dir(std::string(kDefaultDataDir));
+  if (config.grpc().unix_socket().empty()) {
+    config.mutable_grpc()->set_unix_socket(std::string(kDefaultUnixSocket));
+  }
+  if (config.log_level() == v1::LOG_LEVEL_UNSPECIFIED) config.set_log_level(v1::INFO);
+  if (config.driver().name().empty()) config.mutable_driver()->set_name(std::string(kDefaultDriver));
+  if (config.driver().modem_id() == 0) config.mutable_driver()->set_modem_id(1);
+  if (config.mac().name().empty()) config.mutable_mac()->set_name(std::string(kDefaultMac));
+}
+
+}  // namespace
+
+v1::Config parse_config(std::string_view text, const std::string& file_name) {
+  v1::Config config;
+  pb::TextFormat::Parser parser;
+  FirstErrorCollector errors;
+  pb::TextFormat::ParseInfoTree tree;
+  parser.RecordErrorsTo(&errors);
+  parser.WriteLocationsTo(&tree);
+  if (!parser.ParseFromString(std::string(text), &config)) {
+    if (!errors.error()) throw ConfigError(file_name, 0, 0, "", "not a valid config");
+    const auto& e = *errors.error();
+    ParseErrorPlace where = place_parse_error(text, e.line, e.column, e.message);
+    throw ConfigError(file_name, where.line, where.column, where.field, e.message);
+  }
+  validate(config, tree, file_name);
+  fill_defaults(config);
+  return config;
+}
+
+v1::Config load_config_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path, 0, 0, "", "cannot open config file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ConfigError(path, 0, 0, "", "cannot read config file");
+  return parse_config(text.str(), path);
+}
+
+std::string_view example_config() { return embedded_example_config().front().second; }
+
+void check_effective_config(const v1::Config& config) {
+  if (config.data_dir().empty()) throw std::invalid_argument("data dir: must not be empty");
+  const std::string& socket = config.grpc().unix_socket();
+  if (socket.empty()) throw std::invalid_argument("unix socket: must not be empty");
+  if (socket.size() >= sizeof(sockaddr_un::sun_path)) {
+    throw std::invalid_argument("unix socket: path \"" + socket + "\" is longer than " +
+                                std::to_string(sizeof(sockaddr_un::sun_path) - 1) + " bytes");
+  }
+}
+
+}  // namespace acomms::core

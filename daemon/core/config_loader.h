@@ -1,0 +1,34 @@
+#pragma once
+// Loading acommsd's config: protobuf text format against acomms.v1.Config,
+// then checks the parser cannot make (address syntax, name syntax), each
+// reported as a ConfigError with the file, line, column and field.
+
+#include <string>
+#include <string_view>
+
+#include "acomms/v1/config.pb.h"
+
+namespace acomms::core {
+
+inline constexpr std::string_view kDefaultDataDir = "/var/lib/acommsd";
+inline constexpr std::string_view kDefaultUnixSocket = "/run/acommsd/acommsd.sock";
+inline constexpr std::string_view kDefaultDriver = "sim";
+inline constexpr std::string_view kDefaultMac = "fixed";
+
+// Parses `text` (named `file_name` in errors), validates it and fills in
+// defaults. Throws ConfigError.
+v1::Config parse_config(std::string_view text, const std::string& file_name);
+
+// Reads and parses the file at `path`. Throws ConfigError (also when the file
+// cannot be read).
+v1::Config load_config_file(const std::string& path);
+
+// A complete config with every setting explained, as printed by
+// `acommsd --example-config`. It parses to the defaults.
+std::string_view example_config();
+
+// Checks the settings that command-line overrides can also change. Throws
+// std::invalid_argument naming the setting.
+void check_effective_config(const v1::Config& config);
+
+}  // namespace acomms::core

@@ -1,0 +1,36 @@
+#pragma once
+// acommsd assembled: store, core thread and gRPC endpoint, started in that
+// order (the API answers only once what it reports on is up) and stopped in
+// the reverse order.
+
+#include <memory>
+
+#include "acomms/v1/config.pb.h"
+#include "core/event_loop.h"
+#include "service/grpc_server.h"
+#include "service/status_service.h"
+#include "store/store.h"
+
+namespace acomms {
+
+class Daemon {
+ public:
+  // Opens the store and starts serving. Throws (StoreError,
+  // std::runtime_error) with a message fit for the operator.
+  explicit Daemon(const v1::Config& config);
+  // Same as stop().
+  ~Daemon();
+
+  // Stop accepting calls, let in-flight ones finish, stop the core, flush
+  // and close the store. Idempotent.
+  void stop();
+
+ private:
+  v1::Config config_;
+  std::unique_ptr<store::Store> store_;
+  std::unique_ptr<core::EventLoop> core_;
+  std::unique_ptr<service::AcommsService> api_;
+  std::unique_ptr<service::GrpcServer> server_;
+};
+
+}  // namespace acomms

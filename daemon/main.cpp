@@ -1,0 +1,97 @@
+// acommsd: the acoustic communications daemon.
+//
+// Exit codes: 0 clean stop (or a successful --check-config), 1 a config or
+// start-up error (the message says which file and what is wrong), 2 bad
+// command-line usage.
+
+#include <CLI/CLI.hpp>
+#include <signal.h>
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <iostream>
+
+#include "core/config_error.h"
+#include "core/config_loader.h"
+#include "core/logging.h"
+#include "daemon.h"
+
+namespace {
+
+constexpr int kExitStartupError = 1;
+constexpr int kExitUsage = 2;
+
+// Blocks the stop signals in this thread before any other starts, so every
+// thread inherits the mask and the signals wait for sigwait() in main:
+// shutdown then runs as ordinary code, not in a signal handler.
+sigset_t block_stop_signals() {
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  return signals;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"acommsd: acoustic communications daemon (DCCL, priority queues, TDMA)"};
+  std::string config_path;
+  std::string data_dir;
+  std::string socket;
+  std::string check_path;
+  bool print_example = false;
+  app.add_option("-c,--config", config_path, "Config file (protobuf text format)");
+  app.add_option("--data-dir", data_dir, "Directory for the store (overrides the config)");
+  app.add_option("--socket", socket, "Unix socket for the API (overrides the config)");
+  app.add_flag("--example-config", print_example, "Print a complete, commented config and exit");
+  app.add_option("--check-config", check_path, "Validate a config file and exit");
+  app.set_version_flag("--version", std::string("acommsd ") + ACOMMS_VERSION);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : kExitUsage;  // --help and --version exit 0
+  }
+
+  if (print_example) {
+    std::cout << acomms::core::example_config();
+    return 0;
+  }
+  if (!check_path.empty()) {
+    try {
+      acomms::core::load_config_file(check_path);
+      std::cout << check_path << ": ok\n";
+      return 0;
+    } catch (const std::exception& e) {
+      std::cerr << "acommsd: " << e.what() << "\n";
+      return kExitStartupError;
+    }
+  }
+
+  acomms::v1::Config config;
+  try {
+    config = config_path.empty() ? acomms::core::parse_config("", "(defaults)")
+                                 : acomms::core::load_config_file(config_path);
+    if (!data_dir.empty()) config.set_data_dir(data_dir);
+    if (!socket.empty()) config.mutable_grpc()->set_unix_socket(socket);
+    acomms::core::check_effective_config(config);
+  } catch (const std::exception& e) {
+    std::cerr << "acommsd: " << e.what() << "\n";
+    return kExitStartupError;
+  }
+
+  acomms::core::configure_logging(config.log_level());
+  sigset_t stop_signals = block_stop_signals();
+  try {
+    acomms::Daemon daemon(config);
+    int signal_number = 0;
+    sigwait(&stop_signals, &signal_number);
+    spdlog::info("received {}, stopping", signal_number == SIGTERM ? "SIGTERM" : "SIGINT");
+    daemon.stop();
+  } catch (const std::exception& e) {
+    spdlog::critical("{}", e.what());
+    return kExitStartupError;
+  }
+  return 0;
+}

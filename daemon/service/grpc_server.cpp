@@ -1,0 +1,102 @@
+#include "service/grpc_server.h"
+
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <spdlog/spdlog.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+#include "acomms/v1/acomms.grpc.pb.h"
+
+namespace acomms::service {
+namespace {
+
+// A socket file left by a daemon that died is removed; one that a live
+// daemon answers on is not ours to take.
+void clear_stale_socket(const std::string& path) {
+  struct stat info {};
+  if (::lstat(path.c_str(), &info) != 0) return;
+  if (!S_ISSOCK(info.st_mode)) {
+    throw std::runtime_error("unix socket " + path + ": a file that is not a socket is in the way");
+  }
+  int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  std::strncpy(addr.sun_path, path.c_str(), sizeof(addr.sun_path) - 1);
+  bool live = ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) == 0;
+  ::close(fd);
+  if (live) throw std::runtime_error("unix socket " + path + " is in use by another process");
+  ::unlink(path.c_str());
+}
+
+}  // namespace
+
+GrpcServer::GrpcServer(const Endpoints& endpoints, const std::vector<grpc::Service*>& services)
+    : unix_socket_(endpoints.unix_socket) {
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+
+  std::filesystem::path socket_dir = std::filesystem::path(unix_socket_).parent_path();
+  if (!socket_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(socket_dir, ec);
+    if (ec) throw std::runtime_error("unix socket dir " + socket_dir.string() + ": " + ec.message());
+  }
+  clear_stale_socket(unix_socket_);
+
+  grpc::ServerBuilder builder;
+  int unix_port = 0;
+  builder.AddListeningPort("unix:" + unix_socket_, grpc::InsecureServerCredentials(), &unix_port);
+  int tcp_port = 0;
+  if (!endpoints.tcp_listen.empty()) {
+    builder.AddListeningPort(endpoints.tcp_listen, grpc::InsecureServerCredentials(), &tcp_port);
+  }
+  for (grpc::Service* service : services) builder.RegisterService(service);
+
+  // The socket is created by bind(2) inside BuildAndStart; a umask makes it
+  // 0660 from the first instant instead of briefly wider.
+  mode_t old_mask = ::umask(0117);
+  server_ = builder.BuildAndStart();
+  ::umask(old_mask);
+  if (!server_ || unix_port == 0) {
+    throw std::runtime_error("cannot listen on unix:" + unix_socket_);
+  }
+  if (!endpoints.tcp_listen.empty() && tcp_port == 0) {
+    server_->Shutdown();
+    throw std::runtime_error("cannot listen on TCP " + endpoints.tcp_listen +
+                             " (address in use, or not an address of this machine)");
+  }
+  ::chmod(unix_socket_.c_str(), 0660);
+
+  service_names_ = {v1::Acomms::service_full_name()};
+  spdlog::info("grpc: listening on unix:{}{}", unix_socket_,
+               endpoints.tcp_listen.empty() ? "" : " and tcp " + endpoints.tcp_listen);
+}
+
+GrpcServer::~GrpcServer() { shutdown(std::chrono::milliseconds(0)); }
+
+void GrpcServer::set_serving(bool serving) {
+  if (!server_) return;
+  grpc::HealthCheckServiceInterface* health = server_->GetHealthCheckService();
+  if (health == nullptr) return;
+  health->SetServingStatus(serving);
+  for (const auto& name : service_names_) health->SetServingStatus(name, serving);
+}
+
+void GrpcServer::shutdown(std::chrono::milliseconds grace) {
+  if (!server_) return;
+  set_serving(false);
+  server_->Shutdown(std::chrono::system_clock::now() + grace);
+  server_->Wait();
+  server_.reset();
+  ::unlink(unix_socket_.c_str());
+}
+
+}  // namespace acomms::service

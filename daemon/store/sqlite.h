@@ -1,0 +1,64 @@
+#pragma once
+// Thin RAII wrappers over the SQLite C API: a connection and a prepared
+// statement. Every failure throws StoreError carrying SQLite's own message.
+
+#include <sqlite3.h>
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "store/store_error.h"
+
+namespace acomms::store {
+
+class Statement;
+
+class Database {
+ public:
+  // Opens (creating if missing) the database file. Throws StoreError.
+  explicit Database(const std::string& path);
+  ~Database();
+  Database(const Database&) = delete;
+  Database& operator=(const Database&) = delete;
+
+  // Runs one or more statements that return no rows.
+  void exec(std::string_view sql);
+  Statement prepare(std::string_view sql);
+  const std::string& path() const { return path_; }
+  sqlite3* handle() { return db_; }
+
+  // SQLite's message for the last failure on this connection.
+  std::string last_error() const;
+
+ private:
+  std::string path_;
+  sqlite3* db_ = nullptr;
+};
+
+class Statement {
+ public:
+  Statement(Database& db, std::string_view sql);
+  ~Statement();
+  Statement(Statement&& other) noexcept;
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+  Statement& operator=(Statement&&) = delete;
+
+  // Parameters are 1-based, as in SQL.
+  Statement& bind(int index, int64_t value);
+  Statement& bind(int index, std::string_view text);
+  // Advances to the next row: true while there is one.
+  bool step();
+  void reset();
+
+  bool is_null(int column) const;
+  int64_t column_int64(int column) const;
+  std::string column_text(int column) const;
+
+ private:
+  Database* db_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+}  // namespace acomms::store

@@ -1,0 +1,292 @@
+// The real acommsd binary, end to end: start on a fresh data dir, health
+// SERVING, systemd readiness, `acommsctl status --json`, reflection, SIGTERM
+// exit 0 with the schema recorded, and a second start that applies nothing.
+
+#include <google/protobuf/util/json_util.h>
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sqlite3.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "acomms/v1/acomms.pb.h"
+#include "child_process.h"
+#include "grpc/health/v1/health.grpc.pb.h"
+#include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
+#include "store/migration.h"
+
+namespace acomms::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+const std::string kAcommsd = ACOMMSD_BINARY;
+const std::string kAcommsctl = ACOMMSCTL_BINARY;
+
+// An abstract-namespace datagram socket standing in for systemd's.
+class FakeSystemd {
+ public:
+  FakeSystemd() : name_("acomms-it-" + std::to_string(::getpid())) {
+    fd_ = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    sockaddr_un addr{};
+    addr.sun_family = AF_UNIX;
+    std::memcpy(addr.sun_path + 1, name_.data(), name_.size());
+    EXPECT_EQ(::bind(fd_, reinterpret_cast<sockaddr*>(&addr),
+                     offsetof(sockaddr_un, sun_path) + 1 + name_.size()),
+              0);
+  }
+  ~FakeSystemd() { ::close(fd_); }
+  std::string address() const { return "@" + name_; }
+  // Everything received so far, messages joined by '|'.
+  std::string received() {
+    std::string all;
+    char buffer[512];
+    ssize_t n;
+    while ((n = ::recv(fd_, buffer, sizeof(buffer), MSG_DONTWAIT)) > 0) {
+      all += (all.empty() ? "" : "|") + std::string(buffer, n);
+    }
+    return all;
+  }
+
+ private:
+  std::string name_;
+  int fd_;
+};
+
+class DaemonTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    // Short base path: unix socket paths are limited to 107 bytes.
+    dir_ = fs::path("/tmp") / ("acomms-it-" + std::to_string(::getpid()) + "-" +
+                               ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    socket_ = (dir_ / "api.sock").string();
+    config_ = (dir_ / "acommsd.conf").string();
+    std::ofstream(config_) << "data_dir: \"" << (dir_ / "data").string() << "\"\n"
+                           << "log_level: DEBUG\n"
+                           << "grpc { unix_socket: \"" << socket_ << "\" }\n"
+                           << "driver { name: \"sim\" modem_id: 3 }\n"
+                           << "mac { name: \"fixed\" }\n";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::unique_ptr<ChildProcess> start_daemon(const std::string& log_name,
+                                             const std::map<std::string, std::string>& env = {}) {
+    return std::make_unique<ChildProcess>(kAcommsd, std::vector<std::string>{"--config", config_},
+                                          (dir_ / log_name).string(), env);
+  }
+
+  // Polls the standard health service until SERVING.
+  bool wait_serving(ChildProcess& daemon, std::chrono::milliseconds timeout = 20s) {
+    auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (!daemon.running()) return false;
+      if (fs::exists(socket_)) {
+        auto channel = grpc::CreateChannel("unix:" + socket_, grpc::InsecureChannelCredentials());
+        auto health = grpc::health::v1::Health::NewStub(channel);
+        grpc::ClientContext context;
+        context.set_deadline(std::chrono::system_clock::now() + 1s);
+        grpc::health::v1::HealthCheckResponse response;
+        grpc::Status status = health->Check(&context, {}, &response);
+        if (status.ok() && response.status() == grpc::health::v1::HealthCheckResponse::SERVING) {
+          return true;
+        }
+      }
+      std::this_thread::sleep_for(50ms);
+    }
+    return false;
+  }
+
+  std::string db_path() const { return (dir_ / "data" / "acommsd.db").string(); }
+
+  fs::path dir_;
+  std::string socket_;
+  std::string config_;
+};
+
+// (version, name, applied_at) rows of schema_migrations, read directly.
+std::vector<std::string> migration_rows(const std::string& db_path) {
+  sqlite3* db = nullptr;
+  EXPECT_EQ(sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  sqlite3_stmt* stmt = nullptr;
+  EXPECT_EQ(sqlite3_prepare_v2(db,
+                               "SELECT version || ' ' || name || ' ' || applied_at "
+                               "FROM schema_migrations ORDER BY version",
+                               -1, &stmt, nullptr),
+            SQLITE_OK);
+  std::vector<std::string> rows;
+  while (sqlite3_step(stmt) == SQLITE_ROW) {
+    rows.emplace_back(reinterpret_cast<const char*>(sqlite3_column_text(stmt, 0)));
+  }
+  sqlite3_finalize(stmt);
+  sqlite3_close(db);
+  return rows;
+}
+
+TEST_F(DaemonTest, ServesStatusStopsCleanlyAndRestartsWithoutRemigrating) {
+  const int64_t expected_schema = store::known_migrations().back().version;
+  FakeSystemd systemd;
+  auto daemon = start_daemon("first", {{"NOTIFY_SOCKET", systemd.address()}});
+  ASSERT_TRUE(wait_serving(*daemon)) << daemon->stderr_text();
+  EXPECT_NE(systemd.received().find("READY=1"), std::string::npos);
+
+  struct stat info {};
+  ASSERT_EQ(::stat(socket_.c_str(), &info), 0);
+  EXPECT_TRUE(S_ISSOCK(info.st_mode));
+  EXPECT_EQ(info.st_mode & 0777, 0660u);
+
+  RunResult status = run(kAcommsctl, {"--socket", socket_, "status", "--json"},
+                         (dir_ / "ctl").string());
+  ASSERT_EQ(status.exit_code, 0) << status.err;
+  v1::Status reported;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(status.out, &reported).ok()) << status.out;
+  EXPECT_EQ(reported.version(), ACOMMS_VERSION);
+  EXPECT_EQ(reported.data_dir(), (dir_ / "data").string());
+  EXPECT_EQ(reported.schema_version(), expected_schema);
+  EXPECT_EQ(reported.driver(), "sim");
+  EXPECT_EQ(reported.mac(), "fixed");
+  EXPECT_EQ(reported.modem_id(), 3u);
+  EXPECT_GT(reported.uptime_s(), 0.0);
+  EXPECT_LT(reported.uptime_s(), 60.0);
+
+  RunResult human = run(kAcommsctl, {"--socket", socket_, "status"}, (dir_ / "ctl-human").string());
+  EXPECT_EQ(human.exit_code, 0) << human.err;
+  EXPECT_NE(human.out.find("schema version:  " + std::to_string(expected_schema)), std::string::npos)
+      << human.out;
+
+  daemon->signal(SIGTERM);
+  std::optional<int> code = daemon->wait(15s);
+  ASSERT_TRUE(code.has_value()) << "no clean exit; signal " << daemon->exit_signal();
+  EXPECT_EQ(*code, 0) << daemon->stderr_text();
+  EXPECT_NE(systemd.received().find("STOPPING=1"), std::string::npos);
+  EXPECT_FALSE(fs::exists(socket_)) << "socket file left behind";
+
+  std::vector<std::string> first_rows = migration_rows(db_path());
+  ASSERT_EQ(first_rows.size(), store::known_migrations().size());
+  EXPECT_EQ(first_rows.back().substr(0, first_rows.back().find(' ')), std::to_string(expected_schema));
+  // The WAL was checkpointed at close: the main file alone holds the data.
+  EXPECT_FALSE(fs::exists(db_path() + "-wal") && fs::file_size(db_path() + "-wal") > 0);
+
+  auto second = start_daemon("second");
+  ASSERT_TRUE(wait_serving(*second)) << second->stderr_text();
+  second->signal(SIGINT);
+  ASSERT_EQ(second->wait(15s), std::optional<int>(0)) << second->stderr_text();
+  EXPECT_NE(second->stderr_text().find("(0 migrations applied)"), std::string::npos)
+      << second->stderr_text();
+  EXPECT_EQ(migration_rows(db_path()), first_rows);
+}
+
+TEST_F(DaemonTest, ReflectionListsTheServices) {
+  auto daemon = start_daemon("reflect");
+  ASSERT_TRUE(wait_serving(*daemon)) << daemon->stderr_text();
+  auto channel = grpc::CreateChannel("unix:" + socket_, grpc::InsecureChannelCredentials());
+  auto reflection = grpc::reflection::v1alpha::ServerReflection::NewStub(channel);
+  grpc::ClientContext context;
+  auto stream = reflection->ServerReflectionInfo(&context);
+  grpc::reflection::v1alpha::ServerReflectionRequest request;
+  request.set_list_services("*");
+  ASSERT_TRUE(stream->Write(request));
+  grpc::reflection::v1alpha::ServerReflectionResponse response;
+  ASSERT_TRUE(stream->Read(&response));
+  std::set<std::string> names;
+  for (const auto& s : response.list_services_response().service()) names.insert(s.name());
+  EXPECT_TRUE(names.count("acomms.v1.Acomms")) << response.DebugString();
+  EXPECT_TRUE(names.count("grpc.health.v1.Health")) << response.DebugString();
+
+  request.set_file_containing_symbol("acomms.v1.Acomms");
+  ASSERT_TRUE(stream->Write(request));
+  ASSERT_TRUE(stream->Read(&response));
+  ASSERT_GT(response.file_descriptor_response().file_descriptor_proto_size(), 0)
+      << response.DebugString();
+  stream->WritesDone();
+  context.TryCancel();
+  daemon->signal(SIGTERM);
+  EXPECT_EQ(daemon->wait(15s), std::optional<int>(0));
+}
+
+TEST_F(DaemonTest, AcommsctlReportsAnUnreachableDaemonOnOneLine) {
+  RunResult missing = run(kAcommsctl, {"--socket", socket_, "status"}, (dir_ / "ctl").string());
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(missing.out, "");
+  EXPECT_EQ(missing.err, "acommsctl: cannot reach acommsd at " + socket_ +
+                             ": no such socket (is acommsd running? see --socket)\n");
+
+  // A socket file nobody listens on (a daemon that was SIGKILLed).
+  int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  std::strncpy(addr.sun_path, socket_.c_str(), sizeof(addr.sun_path) - 1);
+  ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)), 0);
+  ::close(fd);
+  RunResult stale = run(kAcommsctl, {"--socket", socket_, "--timeout", "1", "status"},
+                        (dir_ / "ctl2").string());
+  EXPECT_EQ(stale.exit_code, 1);
+  EXPECT_EQ(std::count(stale.err.begin(), stale.err.end(), '\n'), 1) << stale.err;
+  EXPECT_EQ(stale.err.rfind("acommsctl: cannot reach acommsd at " + socket_, 0), 0u) << stale.err;
+
+  // The daemon replaces such a stale socket instead of failing to bind.
+  auto daemon = start_daemon("stale");
+  EXPECT_TRUE(wait_serving(*daemon)) << daemon->stderr_text();
+}
+
+TEST_F(DaemonTest, CheckConfigAndExampleConfig) {
+  RunResult example = run(kAcommsd, {"--example-config"}, (dir_ / "example").string());
+  ASSERT_EQ(example.exit_code, 0);
+  EXPECT_NE(example.out.find("unix_socket"), std::string::npos);
+  std::string example_path = (dir_ / "example.conf").string();
+  std::ofstream(example_path) << example.out;
+  RunResult check = run(kAcommsd, {"--check-config", example_path}, (dir_ / "check").string());
+  EXPECT_EQ(check.exit_code, 0) << check.err;
+  EXPECT_EQ(check.out, example_path + ": ok\n");
+
+  std::string bad_path = (dir_ / "bad.conf").string();
+  std::ofstream(bad_path) << "log_level: INFO\ngrpc {\n  tcp_listen: \"nowhere\"\n}\n";
+  RunResult bad = run(kAcommsd, {"--check-config", bad_path}, (dir_ / "bad").string());
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find(bad_path + ":3:3: field 'grpc.tcp_listen'"), std::string::npos) << bad.err;
+}
+
+TEST_F(DaemonTest, StartupErrorsExitNonZeroWithTheReason) {
+  fs::create_directories(dir_ / "data");
+  std::ofstream(db_path()) << std::string(4096, 'x');
+  auto daemon = start_daemon("corrupt");
+  std::optional<int> code = daemon->wait(15s);
+  ASSERT_TRUE(code.has_value());
+  EXPECT_EQ(*code, 1);
+  EXPECT_NE(daemon->stderr_text().find("not a usable SQLite database"), std::string::npos)
+      << daemon->stderr_text();
+
+  std::string nope = (dir_ / "nope.conf").string();
+  RunResult missing = run(kAcommsd, {"--config", nope}, (dir_ / "missing").string());
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(missing.err, "acommsd: " + nope + ": cannot open config file\n");
+
+  RunResult usage = run(kAcommsd, {"--no-such-option"}, (dir_ / "usage").string());
+  EXPECT_EQ(usage.exit_code, 2);
+  EXPECT_NE(usage.err.find("--no-such-option"), std::string::npos) << usage.err;
+}
+
+TEST_F(DaemonTest, SecondDaemonOnTheSameDataDirIsRefused) {
+  auto first = start_daemon("one");
+  ASSERT_TRUE(wait_serving(*first)) << first->stderr_text();
+  auto second = start_daemon("two");
+  std::optional<int> code = second->wait(15s);
+  ASSERT_TRUE(code.has_value());
+  EXPECT_EQ(*code, 1);
+  EXPECT_NE(second->stderr_text().find("in use by another acommsd"), std::string::npos)
+      << second->stderr_text();
+  EXPECT_TRUE(first->running());
+}
+
+}  // namespace
+}  // namespace acomms::testing

@@ -1,0 +1,170 @@
+// Config parsing: a good file gives the settings and defaults; each kind of
+// bad file gives a ConfigError naming the file, line, column and field.
+
+#include "core/config_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/config_error.h"
+
+namespace acomms::core {
+namespace {
+
+ConfigError parse_error(const std::string& text) {
+  try {
+    parse_config(text, "test.conf");
+  } catch (const ConfigError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no ConfigError for:\n" << text;
+  return ConfigError("", 0, 0, "", "");
+}
+
+TEST(ConfigLoader, GoodFileGivesItsSettings) {
+  v1::Config config = parse_config(R"(
+    data_dir: "/tmp/acomms"
+    log_level: DEBUG
+    grpc { unix_socket: "/tmp/a.sock" tcp_listen: "127.0.0.1:50051" }
+    driver { name: "udp" modem_id: 7 }
+    mac { name: "polled" }
+  )", "good.conf");
+  EXPECT_EQ(config.data_dir(), "/tmp/acomms");
+  EXPECT_EQ(config.log_level(), v1::DEBUG);
+  EXPECT_EQ(config.grpc().unix_socket(), "/tmp/a.sock");
+  EXPECT_EQ(config.grpc().tcp_listen(), "127.0.0.1:50051");
+  EXPECT_EQ(config.driver().name(), "udp");
+  EXPECT_EQ(config.driver().modem_id(), 7u);
+  EXPECT_EQ(config.mac().name(), "polled");
+}
+
+TEST(ConfigLoader, EmptyFileGivesDefaults) {
+  v1::Config config = parse_config("", "empty.conf");
+  EXPECT_EQ(config.data_dir(), kDefaultDataDir);
+  EXPECT_EQ(config.grpc().unix_socket(), kDefaultUnixSocket);
+  EXPECT_EQ(config.grpc().tcp_listen(), "");
+  EXPECT_EQ(config.log_level(), v1::INFO);
+  EXPECT_EQ(config.driver().name(), "sim");
+  EXPECT_EQ(config.driver().modem_id(), 1u);
+  EXPECT_EQ(config.mac().name(), "fixed");
+}
+
+// The printed example claims to show every default: hold it to that.
+TEST(ConfigLoader, ExampleConfigParsesToTheDefaults) {
+  v1::Config example = parse_config(example_config(), "example");
+  v1::Config defaults = parse_config("", "empty");
+  EXPECT_EQ(example.SerializeAsString(), defaults.SerializeAsString())
+      << example.DebugString() << "\nvs\n" << defaults.DebugString();
+  // And it documents every top-level setting.
+  const auto* type = v1::Config::descriptor();
+  for (int i = 0; i < type->field_count(); ++i) {
+    EXPECT_NE(example_config().find(type->field(i)->name()), std::string_view::npos)
+        << type->field(i)->name() << " is not in the example config";
+  }
+}
+
+TEST(ConfigLoader, UnknownFieldNamesFileLineAndField) {
+  ConfigError e = parse_error("data_dir: \"/x\"\n\ngrpc {\n  unix_sockett: \"/y\"\n}\n");
+  EXPECT_EQ(e.file(), "test.conf");
+  EXPECT_EQ(e.line(), 4);
+  EXPECT_EQ(e.column(), 3);
+  EXPECT_EQ(e.field(), "unix_sockett");
+  EXPECT_NE(std::string(e.what()).find("test.conf:4:3: field 'unix_sockett'"), std::string::npos)
+      << e.what();
+  EXPECT_NE(e.problem().find("no field named \"unix_sockett\""), std::string::npos) << e.problem();
+}
+
+TEST(ConfigLoader, WrongValueTypeNamesTheField) {
+  ConfigError e = parse_error("driver {\n  modem_id: abc\n}\n");
+  EXPECT_EQ(e.line(), 2);
+  EXPECT_EQ(e.field(), "modem_id");
+  EXPECT_NE(e.problem().find("integer"), std::string::npos) << e.problem();
+}
+
+TEST(ConfigLoader, BadEnumValueNamesTheField) {
+  ConfigError e = parse_error("log_level: LOUD\n");
+  EXPECT_EQ(e.line(), 1);
+  EXPECT_EQ(e.field(), "log_level");
+  EXPECT_NE(e.problem().find("LOUD"), std::string::npos) << e.problem();
+}
+
+TEST(ConfigLoader, SyntaxErrorGivesItsLine) {
+  ConfigError e = parse_error("grpc {\n  unix_socket: \"/y\"\n\nlog_level: INFO\n");
+  EXPECT_GE(e.line(), 4);  // the parser notices the missing '}' at the end
+  EXPECT_FALSE(e.problem().empty());
+}
+
+TEST(ConfigLoader, RepeatedSingularFieldIsAnError) {
+  ConfigError e = parse_error("data_dir: \"/a\"\ndata_dir: \"/b\"\n");
+  EXPECT_EQ(e.line(), 2);
+  EXPECT_EQ(e.field(), "data_dir");
+}
+
+TEST(ConfigLoader, BadTcpAddressIsLocated) {
+  ConfigError e = parse_error("log_level: INFO\ngrpc {\n  tcp_listen: \"localhost\"\n}\n");
+  EXPECT_EQ(e.line(), 3);
+  EXPECT_EQ(e.column(), 3);
+  EXPECT_EQ(e.field(), "grpc.tcp_listen");
+  EXPECT_NE(e.problem().find("host:port"), std::string::npos) << e.problem();
+
+  ConfigError port = parse_error("grpc { tcp_listen: \"127.0.0.1:70000\" }");
+  EXPECT_EQ(port.field(), "grpc.tcp_listen");
+  EXPECT_NE(port.problem().find("1 to 65535"), std::string::npos) << port.problem();
+}
+
+TEST(ConfigLoader, IPv6TcpAddressIsAccepted) {
+  EXPECT_EQ(parse_config("grpc { tcp_listen: \"[::1]:50051\" }", "v6").grpc().tcp_listen(),
+            "[::1]:50051");
+}
+
+TEST(ConfigLoader, OverlongSocketPathIsRefused) {
+  std::string path(200, 'a');
+  ConfigError e = parse_error("grpc { unix_socket: \"/" + path + "\" }");
+  EXPECT_EQ(e.field(), "grpc.unix_socket");
+  EXPECT_NE(e.problem().find("at most 107"), std::string::npos) << e.problem();
+}
+
+TEST(ConfigLoader, BadDriverAndMacNamesAreRefused) {
+  ConfigError driver = parse_error("driver { name: \"Sim Driver\" }");
+  EXPECT_EQ(driver.field(), "driver.name");
+  EXPECT_EQ(driver.line(), 1);
+  ConfigError mac = parse_error("mac {\n name: \"../x\"\n}");
+  EXPECT_EQ(mac.field(), "mac.name");
+  EXPECT_EQ(mac.line(), 2);
+}
+
+TEST(ConfigLoader, MissingFileIsNamed) {
+  try {
+    load_config_file("/nonexistent/acommsd.conf");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.file(), "/nonexistent/acommsd.conf");
+    EXPECT_EQ(std::string(e.what()), "/nonexistent/acommsd.conf: cannot open config file");
+  }
+}
+
+TEST(ConfigLoader, FileErrorsCarryThePath) {
+  auto path = std::filesystem::temp_directory_path() / "acomms_config_test.conf";
+  std::ofstream(path) << "log_level: INFO\nbogus: 1\n";
+  try {
+    load_config_file(path.string());
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.file(), path.string());
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_EQ(e.field(), "bogus");
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(ConfigLoader, EffectiveConfigChecksOverrides) {
+  v1::Config config = parse_config("", "x");
+  EXPECT_NO_THROW(check_effective_config(config));
+  config.mutable_grpc()->set_unix_socket("/" + std::string(120, 's'));
+  EXPECT_THROW(check_effective_config(config), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace acomms::core
