@@ -11,7 +11,7 @@ grpc::Status AcommsService::GetStatus(grpc::ServerContext*, const v1::GetStatusR
   response->set_uptime_s(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
   response->set_data_dir(facts_.data_dir);
-  response->set_schema_version(facts_.schema_version);
+  response->set_schema_version(static_cast<int32_t>(facts_.schema_version));
   response->set_driver(facts_.driver);
   response->set_mac(facts_.mac);
   response->set_modem_id(facts_.modem_id);

@@ -54,6 +54,12 @@ Store::Store(const std::string& data_dir) : data_dir_(data_dir) {
   std::string path = data_dir_ + "/" + kStoreFileName;
   try {
     db_ = std::make_unique<Database>(path);
+    // SQLite quietly opens a write-protected file read-only; a daemon that
+    // cannot write would only fail at the first Submit, so refuse now.
+    if (sqlite3_db_readonly(db_->handle(), "main") == 1) {
+      throw StoreError("store " + path +
+                       " is read-only: check that the data dir and the file are writable by this user");
+    }
     // The first real read is where SQLite finds out whether the file is a
     // database at all; word the error for the operator, not for SQLite.
     std::string mode;
