@@ -9,6 +9,7 @@
 
 #include "connection.h"
 #include "global_options.h"
+#include "dccl_command.h"
 #include "status_command.h"
 
 int main(int argc, char** argv) {
@@ -28,9 +29,12 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("acommsctl ") + ACOMMS_VERSION);
 
   acomms::cli::add_status_command(app, options);
+  acomms::cli::add_dccl_command(app, options);
 
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    return e.get_exit_code();  // a command that already reported its failures
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;  // --help and --version exit 0
   } catch (const std::exception& e) {

@@ -14,7 +14,8 @@ packages=(
   libspdlog-dev libfmt-dev libasio-dev libcli11-dev
 )
 if [[ "${1:-}" == "--test" ]]; then
-  packages+=(libgtest-dev libgmock-dev libbenchmark-dev)
+  # clang and its runtime give libFuzzer with ASan/UBSan for the fuzz targets
+  packages+=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev)
 fi
 
 missing=()

@@ -27,7 +27,8 @@ std::string slurp(const std::string& path) {
 
 ChildProcess::ChildProcess(const std::string& program, const std::vector<std::string>& args,
                            const std::string& log_prefix,
-                           const std::map<std::string, std::string>& env)
+                           const std::map<std::string, std::string>& env,
+                           const std::string& stdin_path)
     : log_prefix_(log_prefix) {
   std::vector<std::string> argv_text = {program};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
@@ -48,7 +49,8 @@ ChildProcess::ChildProcess(const std::string& program, const std::vector<std::st
 
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 0, stdin_path.empty() ? "/dev/null" : stdin_path.c_str(),
+                                   O_RDONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 1, (log_prefix + ".out").c_str(),
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&actions, 2, (log_prefix + ".err").c_str(),
@@ -104,6 +106,15 @@ RunResult run(const std::string& program, const std::vector<std::string>& args,
               const std::string& log_prefix, std::chrono::milliseconds timeout) {
   ChildProcess child(program, args, log_prefix);
   std::optional<int> code = child.wait(timeout);
+  return {code.value_or(-1), child.stdout_text(), child.stderr_text()};
+}
+
+RunResult run_with_input(const std::string& program, const std::vector<std::string>& args,
+                         const std::string& log_prefix, const std::string& input) {
+  std::string input_path = log_prefix + ".in";
+  std::ofstream(input_path, std::ios::binary) << input;
+  ChildProcess child(program, args, log_prefix, {}, input_path);
+  std::optional<int> code = child.wait(std::chrono::seconds(30));
   return {code.value_or(-1), child.stdout_text(), child.stderr_text()};
 }
 

@@ -14,9 +14,11 @@ namespace acomms::testing {
 
 class ChildProcess {
  public:
-  // Starts `program` with `args`; stdout/stderr go to `log_prefix`.out/.err.
+  // Starts `program` with `args`; stdout/stderr go to `log_prefix`.out/.err,
+  // stdin comes from `stdin_path` (/dev/null when empty).
   ChildProcess(const std::string& program, const std::vector<std::string>& args,
-               const std::string& log_prefix, const std::map<std::string, std::string>& env = {});
+               const std::string& log_prefix, const std::map<std::string, std::string>& env = {},
+               const std::string& stdin_path = "");
   ~ChildProcess();  // SIGKILLs a child still running
 
   pid_t pid() const { return pid_; }
@@ -47,5 +49,9 @@ struct RunResult {
 RunResult run(const std::string& program, const std::vector<std::string>& args,
               const std::string& log_prefix,
               std::chrono::milliseconds timeout = std::chrono::seconds(30));
+
+// The same, with `input` written to the program's stdin.
+RunResult run_with_input(const std::string& program, const std::vector<std::string>& args,
+                         const std::string& log_prefix, const std::string& input);
 
 }  // namespace acomms::testing
