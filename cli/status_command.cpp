@@ -29,6 +29,7 @@ void print_human(const v1::Status& status) {
   std::printf("  schema version:  %lld\n", static_cast<long long>(status.schema_version()));
   std::printf("  driver:          %s (modem id %u)\n", status.driver().c_str(), status.modem_id());
   std::printf("  mac:             %s\n", status.mac().c_str());
+  std::printf("  dccl types:      %d\n", status.dccl_types());
 }
 
 void run_status(const GlobalOptions& options) {

@@ -3,11 +3,13 @@
 #include <spdlog/spdlog.h>
 
 #include "core/systemd_notify.h"
+#include "message_definitions.h"
 
 namespace acomms {
 
 Daemon::Daemon(const v1::Config& config) : config_(config) {
   store_ = std::make_unique<store::Store>(config_.data_dir());
+  codec_ = make_codec(config_.dccl());
   core_ = std::make_unique<core::EventLoop>();
   core_->start();
 
@@ -18,6 +20,7 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
   facts.driver = config_.driver().name();
   facts.mac = config_.mac().name();
   facts.modem_id = config_.driver().modem_id();
+  facts.dccl_types = static_cast<int32_t>(codec_->types().size());
   api_ = std::make_unique<service::AcommsService>(std::move(facts));
 
   server_ = std::make_unique<service::GrpcServer>(
@@ -37,6 +40,7 @@ void Daemon::stop() {
   server_.reset();
   if (core_) core_->stop();
   core_.reset();
+  codec_.reset();
   store_.reset();
   spdlog::info("acommsd stopped");
 }

@@ -1,5 +1,5 @@
 #pragma once
-// acommsd assembled: store, core thread and gRPC endpoint, started in that
+// acommsd assembled: store, DCCL codec, core thread and gRPC endpoint, started in that
 // order (the API answers only once what it reports on is up) and stopped in
 // the reverse order.
 
@@ -7,6 +7,7 @@
 
 #include "acomms/v1/config.pb.h"
 #include "core/event_loop.h"
+#include "dccl/codec.h"
 #include "service/grpc_server.h"
 #include "service/status_service.h"
 #include "store/store.h"
@@ -28,6 +29,7 @@ class Daemon {
  private:
   v1::Config config_;
   std::unique_ptr<store::Store> store_;
+  std::unique_ptr<dccl::Codec> codec_;
   std::unique_ptr<core::EventLoop> core_;
   std::unique_ptr<service::AcommsService> api_;
   std::unique_ptr<service::GrpcServer> server_;

@@ -95,17 +95,19 @@ struct Place {
   int column = 0;
 };
 
+// `index` picks the element when the last field is repeated.
 Place place_of(const pb::TextFormat::ParseInfoTree& tree, const pb::Descriptor* type,
-               const std::vector<std::string>& path) {
+               const std::vector<std::string>& path, int index) {
   const pb::TextFormat::ParseInfoTree* node = &tree;
   for (size_t i = 0; i < path.size(); ++i) {
     const pb::FieldDescriptor* field = type->FindFieldByName(path[i]);
     if (field == nullptr || node == nullptr) return {};
     if (i + 1 == path.size()) {
-      pb::TextFormat::ParseLocation loc = node->GetLocation(field, -1);
+      pb::TextFormat::ParseLocation loc = node->GetLocation(field, field->is_repeated() ? index : -1);
       if (loc.line < 0) return {};
       return {loc.line + 1, loc.column + 1};
     }
+    if (field->is_repeated()) return {};  // no config nests inside a repeated message yet
     node = node->GetTreeForNested(field, -1);
     type = field->message_type();
   }
@@ -139,8 +141,8 @@ bool valid_plugin_name(const std::string& name) {
 
 void validate(const v1::Config& config, const pb::TextFormat::ParseInfoTree& tree,
               const std::string& file_name) {
-  auto fail = [&](const std::vector<std::string>& path, const std::string& problem) {
-    Place where = place_of(tree, v1::Config::descriptor(), path);
+  auto fail = [&](const std::vector<std::string>& path, const std::string& problem, int index = 0) {
+    Place where = place_of(tree, v1::Config::descriptor(), path, index);
     std::string dotted;
     for (const auto& part : path) dotted += (dotted.empty() ? "" : ".") + part;
     throw ConfigError(file_name, where.line, where.column, dotted, problem);
@@ -154,6 +156,15 @@ void validate(const v1::Config& config, const pb::TextFormat::ParseInfoTree& tre
          "path is " + std::to_string(config.grpc().unix_socket().size()) +
              " bytes; unix sockets allow at most " +
              std::to_string(sizeof(sockaddr_un::sun_path) - 1));
+  }
+  if (config.dccl().has_passphrase() && !config.dccl().passphrase_file().empty()) {
+    fail({"dccl", "passphrase_file"}, "set passphrase or passphrase_file, not both");
+  }
+  for (int i = 0; i < config.dccl().crypto_exempt_ids_size(); ++i) {
+    int id = config.dccl().crypto_exempt_ids(i);
+    if (id < 0 || id > 32767) {
+      fail({"dccl", "crypto_exempt_ids"}, std::to_string(id) + " is not a DCCL id (0 to 32767)", i);
+    }
   }
   if (!config.driver().name().empty() && !valid_plugin_name(config.driver().name())) {
     fail({"driver", "name"}, "\"" + config.driver().name() +

@@ -15,6 +15,7 @@ grpc::Status AcommsService::GetStatus(grpc::ServerContext*, const v1::GetStatusR
   response->set_driver(facts_.driver);
   response->set_mac(facts_.mac);
   response->set_modem_id(facts_.modem_id);
+  response->set_dccl_types(facts_.dccl_types);
   return grpc::Status::OK;
 }
 

@@ -18,6 +18,7 @@ struct DaemonFacts {
   std::string driver;
   std::string mac;
   uint32_t modem_id = 0;
+  int32_t dccl_types = 0;
 };
 
 class AcommsService final : public v1::Acomms::Service {

@@ -276,6 +276,37 @@ TEST_F(DaemonTest, StartupErrorsExitNonZeroWithTheReason) {
   EXPECT_NE(usage.err.find("--no-such-option"), std::string::npos) << usage.err;
 }
 
+TEST_F(DaemonTest, LoadsDcclDefinitionsFromConfig) {
+  const std::string gv = ACOMMS_SHARED_DIR "/conformance/dccl/gv.proto";
+  std::ifstream proto(gv);
+  std::string text((std::istreambuf_iterator<char>(proto)), std::istreambuf_iterator<char>());
+  int expected_types = 0;
+  for (size_t at = 0; (at = text.find("option (dccl.msg)", at)) != std::string::npos; ++at) ++expected_types;
+
+  std::ofstream(config_, std::ios::app) << "dccl { proto_files: \"" << gv << "\" passphrase: \"x\" }\n";
+  auto daemon = start_daemon("dccl");
+  ASSERT_TRUE(wait_serving(*daemon)) << daemon->stderr_text();
+  RunResult status = run(kAcommsctl, {"--socket", socket_, "--json", "status"}, (dir_ / "ctl").string());
+  v1::Status reported;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(status.out, &reported).ok()) << status.out;
+  EXPECT_EQ(reported.dccl_types(), expected_types);
+  EXPECT_NE(daemon->stderr_text().find("dccl: bodies encrypted"), std::string::npos);
+}
+
+TEST_F(DaemonTest, BrokenDcclDefinitionsStopTheStart) {
+  std::string bad = (dir_ / "bad.proto").string();
+  std::ofstream(bad) << "syntax = \"proto2\";\nimport \"dccl/option_extensions.proto\";\n"
+                        "message Bad {\n  option (dccl.msg) = { codec_version: 4 id: 3 max_bytes: 8 };\n"
+                        "  required string s = 1;\n}\n";
+  std::ofstream(config_, std::ios::app) << "dccl { proto_files: \"" << bad << "\" }\n";
+  auto daemon = start_daemon("bad-dccl");
+  std::optional<int> code = daemon->wait(15s);
+  ASSERT_TRUE(code.has_value());
+  EXPECT_EQ(*code, 1);
+  EXPECT_NE(daemon->stderr_text().find("Bad.s"), std::string::npos) << daemon->stderr_text();
+  EXPECT_NE(daemon->stderr_text().find("max_length"), std::string::npos) << daemon->stderr_text();
+}
+
 TEST_F(DaemonTest, SecondDaemonOnTheSameDataDirIsRefused) {
   auto first = start_daemon("one");
   ASSERT_TRUE(wait_serving(*first)) << first->stderr_text();

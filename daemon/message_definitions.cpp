@@ -1,0 +1,52 @@
+#include "message_definitions.h"
+
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "register_codecs.h"
+
+namespace acomms {
+namespace {
+
+std::string read_passphrase_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("dccl.passphrase_file " + path + ": cannot read");
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::string passphrase = text.str();
+  // Editors add a final newline nobody means as part of the secret.
+  if (!passphrase.empty() && passphrase.back() == '\n') passphrase.pop_back();
+  if (!passphrase.empty() && passphrase.back() == '\r') passphrase.pop_back();
+  return passphrase;
+}
+
+}  // namespace
+
+std::unique_ptr<dccl::Codec> make_codec(const v1::DcclConfig& config) {
+  auto codec = std::make_unique<dccl::Codec>();
+  codecs::register_plugin_codecs(codec->registry());
+  std::vector<std::string> include_dirs(config.include_dirs().begin(), config.include_dirs().end());
+  for (const std::string& file : config.proto_files()) {
+    try {
+      auto types = codec->load(file, include_dirs);
+      spdlog::info("dccl: {}: {} message type{}", file, types.size(), types.size() == 1 ? "" : "s");
+    } catch (const dccl::Error& e) {
+      throw std::runtime_error("dccl definitions " + file + ":\n" + e.what());
+    }
+  }
+  if (config.has_passphrase() || !config.passphrase_file().empty()) {
+    std::string passphrase = config.has_passphrase() ? config.passphrase()
+                                                     : read_passphrase_file(config.passphrase_file());
+    std::set<int> exempt(config.crypto_exempt_ids().begin(), config.crypto_exempt_ids().end());
+    codec->set_crypto(passphrase, exempt);
+    spdlog::info("dccl: bodies encrypted ({} id{} exempt)", exempt.size(), exempt.size() == 1 ? "" : "s");
+  }
+  codec->set_strict(config.strict());
+  return codec;
+}
+
+}  // namespace acomms

@@ -1,0 +1,108 @@
+// The daemon's codec from config: definitions load, encryption and its
+// exempt ids follow the config, and problems are start-up errors.
+
+#include "message_definitions.h"
+
+#include <google/protobuf/text_format.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/config_error.h"
+#include "core/config_loader.h"
+#include "dccl/hex.h"
+
+namespace acomms {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kGvProto = ACOMMS_SHARED_DIR "/conformance/dccl/gv.proto";
+
+std::string encode_nav(const dccl::Codec& codec) {
+  auto message = codec.new_message("gv.NavigationReport");
+  google::protobuf::TextFormat::ParseFromString("x: 450 y: 550 z: -100 veh_class: AUV battery_ok: true",
+                                                message.get());
+  return dccl::to_hex(codec.encode(*message));
+}
+
+v1::DcclConfig dccl_config(const std::string& text) {
+  return core::parse_config("dccl { " + text + " }", "test.conf").dccl();
+}
+
+TEST(MessageDefinitions, LoadsTheConfiguredFiles) {
+  auto codec = make_codec(dccl_config("proto_files: \"" + kGvProto + "\""));
+  EXPECT_NE(codec->find_type("gv.NavigationReport"), nullptr);
+  EXPECT_EQ(encode_nav(*codec), "f834987170463213");
+}
+
+TEST(MessageDefinitions, PassphraseEncryptsAsTheSpecVector) {
+  auto codec = make_codec(dccl_config("proto_files: \"" + kGvProto + "\" passphrase: \"my_passphrase!\""));
+  EXPECT_EQ(encode_nav(*codec), "f8a02b71dfcb815f");
+}
+
+TEST(MessageDefinitions, ExemptIdsStayInClear) {
+  auto codec = make_codec(dccl_config("proto_files: \"" + kGvProto +
+                                      "\" passphrase: \"my_passphrase!\" crypto_exempt_ids: 124"));
+  EXPECT_EQ(encode_nav(*codec), "f834987170463213");
+}
+
+TEST(MessageDefinitions, PassphraseFileLosesItsTrailingNewline) {
+  fs::path file = fs::temp_directory_path() / ("acomms-pass-" + std::to_string(::getpid()));
+  std::ofstream(file) << "my_passphrase!\n";
+  auto codec = make_codec(
+      dccl_config("proto_files: \"" + kGvProto + "\" passphrase_file: \"" + file.string() + "\""));
+  EXPECT_EQ(encode_nav(*codec), "f8a02b71dfcb815f");
+  fs::remove(file);
+  try {
+    make_codec(dccl_config("passphrase_file: \"" + file.string() + "\""));
+    FAIL() << "no error for a missing passphrase file";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "dccl.passphrase_file " + file.string() + ": cannot read");
+  }
+}
+
+TEST(MessageDefinitions, StrictComesFromConfig) {
+  auto codec = make_codec(dccl_config("proto_files: \"" + kGvProto + "\" strict: true"));
+  auto message = codec->new_message("gv.Num4");
+  google::protobuf::TextFormat::ParseFromString("ri: 101 ru: 0", message.get());
+  EXPECT_THROW(codec->encode(*message), dccl::Error);
+}
+
+TEST(MessageDefinitions, BrokenDefinitionsNameTheFileAndField) {
+  fs::path file = fs::temp_directory_path() / ("acomms-bad-" + std::to_string(::getpid()) + ".proto");
+  std::ofstream(file) << "syntax = \"proto2\";\nimport \"dccl/option_extensions.proto\";\n"
+                         "message Bad {\n  option (dccl.msg) = { codec_version: 4 id: 3 max_bytes: 8 };\n"
+                         "  required int32 x = 1;\n}\n";
+  try {
+    make_codec(dccl_config("proto_files: \"" + file.string() + "\""));
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    std::string what = e.what();
+    EXPECT_EQ(what.rfind("dccl definitions " + file.string() + ":\n", 0), 0u) << what;
+    EXPECT_NE(what.find("Bad.x"), std::string::npos) << what;
+  }
+  fs::remove(file);
+}
+
+TEST(MessageDefinitions, ConfigRulesAreLocated) {
+  try {
+    core::parse_config("dccl {\n  passphrase: \"a\"\n  passphrase_file: \"/b\"\n}\n", "c.conf");
+    FAIL() << "no error";
+  } catch (const core::ConfigError& e) {
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_EQ(e.field(), "dccl.passphrase_file");
+  }
+  try {
+    core::parse_config("dccl {\n  crypto_exempt_ids: 1\n  crypto_exempt_ids: 40000\n}", "c.conf");
+    FAIL() << "no error";
+  } catch (const core::ConfigError& e) {
+    EXPECT_EQ(e.field(), "dccl.crypto_exempt_ids");
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_NE(e.problem().find("40000 is not a DCCL id"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace acomms
