@@ -10,6 +10,7 @@
 #include "connection.h"
 #include "global_options.h"
 #include "dccl_command.h"
+#include "sim_command.h"
 #include "status_command.h"
 
 int main(int argc, char** argv) {
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
 
   acomms::cli::add_status_command(app, options);
   acomms::cli::add_dccl_command(app, options);
+  acomms::cli::add_sim_command(app, options);
 
   try {
     app.parse(argc, argv);

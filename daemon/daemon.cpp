@@ -9,9 +9,22 @@ namespace acomms {
 
 Daemon::Daemon(const v1::Config& config) : config_(config) {
   store_ = std::make_unique<store::Store>(config_.data_dir());
+  // From here on only the writer's thread touches the store's connection.
+  writer_ = std::make_unique<store::GroupCommitWriter>(store_->db());
+  journal_ = std::make_unique<queue::SqliteJournal>(*writer_);
   codec_ = make_codec(config_.dccl());
+  try {
+    queues_ = std::make_unique<queue::QueueManager>(*codec_, config_.queue(),
+                                                    static_cast<int32_t>(config_.driver().modem_id()),
+                                                    clock_, *journal_);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(std::string("queue config: ") + e.what());
+  }
+  queues_->restore();
   core_ = std::make_unique<core::EventLoop>();
+  expiry_timer_ = std::make_unique<asio::steady_timer>(core_->context());
   core_->start();
+  core_->post([this] { schedule_expiry(); });
 
   service::DaemonFacts facts;
   facts.version = ACOMMS_VERSION;
@@ -33,13 +46,29 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
 
 Daemon::~Daemon() { stop(); }
 
+// Messages expire on time even when no transmission comes to notice them.
+void Daemon::schedule_expiry() {
+  expiry_timer_->expires_after(std::chrono::seconds(1));
+  expiry_timer_->async_wait([this](const std::error_code& error) {
+    if (error) return;
+    queues_->expire();
+    schedule_expiry();
+  });
+}
+
 void Daemon::stop() {
   if (!server_ && !core_ && !store_) return;
   core::systemd_notify("STOPPING=1");
   if (server_) server_->shutdown(std::chrono::seconds(2));
   server_.reset();
   if (core_) core_->stop();
+  expiry_timer_.reset();
   core_.reset();
+  queues_.reset();
+  // Every event recorded so far reaches the disk before the store closes.
+  if (writer_) writer_->stop();
+  journal_.reset();
+  writer_.reset();
   codec_.reset();
   store_.reset();
   spdlog::info("acommsd stopped");

@@ -1,13 +1,20 @@
 #pragma once
-// acommsd assembled: store, DCCL codec, core thread and gRPC endpoint, started in that
-// order (the API answers only once what it reports on is up) and stopped in
-// the reverse order.
+// acommsd assembled: store (with its group-commit writer and the message
+// journal), DCCL codec, queues, core thread and gRPC endpoint, started in
+// that order (the API answers only once what it reports on is up) and
+// stopped in the reverse order.
 
 #include <memory>
 
 #include "acomms/v1/config.pb.h"
+#include <asio/steady_timer.hpp>
+
+#include "core/clock.h"
 #include "core/event_loop.h"
 #include "dccl/codec.h"
+#include "queue/queue_manager.h"
+#include "queue/sqlite_journal.h"
+#include "store/group_commit_writer.h"
 #include "service/grpc_server.h"
 #include "service/status_service.h"
 #include "store/store.h"
@@ -27,10 +34,18 @@ class Daemon {
   void stop();
 
  private:
+  void schedule_expiry();
+
   v1::Config config_;
+  core::SystemClock clock_;
   std::unique_ptr<store::Store> store_;
+  std::unique_ptr<store::GroupCommitWriter> writer_;
+  std::unique_ptr<queue::SqliteJournal> journal_;
   std::unique_ptr<dccl::Codec> codec_;
+  // Owned by the core thread once it runs.
+  std::unique_ptr<queue::QueueManager> queues_;
   std::unique_ptr<core::EventLoop> core_;
+  std::unique_ptr<asio::steady_timer> expiry_timer_;
   std::unique_ptr<service::AcommsService> api_;
   std::unique_ptr<service::GrpcServer> server_;
 };

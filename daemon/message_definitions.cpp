@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "arithmetic/arithmetic_model.h"
 #include "register_codecs.h"
 
 namespace acomms {
@@ -27,6 +28,13 @@ std::string read_passphrase_file(const std::string& path) {
 }  // namespace
 
 std::unique_ptr<dccl::Codec> make_codec(const v1::DcclConfig& config) {
+  for (const auto& model : config.arithmetic_models()) {
+    try {
+      codecs::ArithmeticModels::global().add(codecs::ArithmeticModel::from_message(model));
+    } catch (const dccl::Error& e) {
+      throw std::runtime_error(std::string("dccl.arithmetic_models: ") + e.what());
+    }
+  }
   auto codec = std::make_unique<dccl::Codec>();
   codecs::register_plugin_codecs(codec->registry());
   std::vector<std::string> include_dirs(config.include_dirs().begin(), config.include_dirs().end());

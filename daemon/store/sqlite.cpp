@@ -60,6 +60,31 @@ Statement& Statement::bind(int index, std::string_view text) {
   return *this;
 }
 
+Statement& Statement::bind_double(int index, double value) {
+  if (sqlite3_bind_double(stmt_, index, value) != SQLITE_OK) {
+    throw StoreError(db_->path() + ": " + db_->last_error());
+  }
+  return *this;
+}
+
+Statement& Statement::bind_blob(int index, std::string_view bytes) {
+  // A null pointer would bind SQL NULL; an empty payload is a zero-length blob.
+  int rc = bytes.data() ? sqlite3_bind_blob64(stmt_, index, bytes.data(), bytes.size(),
+                                              SQLITE_TRANSIENT)
+                        : sqlite3_bind_zeroblob(stmt_, index, 0);
+  if (rc != SQLITE_OK) {
+    throw StoreError(db_->path() + ": " + db_->last_error());
+  }
+  return *this;
+}
+
+Statement& Statement::bind_null(int index) {
+  if (sqlite3_bind_null(stmt_, index) != SQLITE_OK) {
+    throw StoreError(db_->path() + ": " + db_->last_error());
+  }
+  return *this;
+}
+
 bool Statement::step() {
   int rc = sqlite3_step(stmt_);
   if (rc == SQLITE_ROW) return true;
@@ -83,6 +108,17 @@ std::string Statement::column_text(int column) const {
   return text ? std::string(reinterpret_cast<const char*>(text),
                             static_cast<size_t>(sqlite3_column_bytes(stmt_, column)))
               : std::string();
+}
+
+double Statement::column_double(int column) const { return sqlite3_column_double(stmt_, column); }
+
+std::string Statement::column_blob(int column) const {
+  // Bytes first, then size: sqlite3_column_bytes after sqlite3_column_blob
+  // is the order SQLite documents as safe.
+  const void* bytes = sqlite3_column_blob(stmt_, column);
+  return bytes ? std::string(static_cast<const char*>(bytes),
+                             static_cast<size_t>(sqlite3_column_bytes(stmt_, column)))
+               : std::string();
 }
 
 }  // namespace acomms::store

@@ -48,6 +48,11 @@ class Statement {
   // Parameters are 1-based, as in SQL.
   Statement& bind(int index, int64_t value);
   Statement& bind(int index, std::string_view text);
+  // Distinct names: an int argument would be ambiguous between the
+  // integer and real overloads.
+  Statement& bind_double(int index, double value);
+  Statement& bind_blob(int index, std::string_view bytes);
+  Statement& bind_null(int index);
   // Advances to the next row: true while there is one.
   bool step();
   void reset();
@@ -55,6 +60,8 @@ class Statement {
   bool is_null(int column) const;
   int64_t column_int64(int column) const;
   std::string column_text(int column) const;
+  double column_double(int column) const;
+  std::string column_blob(int column) const;
 
  private:
   Database* db_;

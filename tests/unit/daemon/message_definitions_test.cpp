@@ -86,6 +86,31 @@ TEST(MessageDefinitions, BrokenDefinitionsNameTheFileAndField) {
   fs::remove(file);
 }
 
+// The arithmetic codec's model comes from config; the spec vector: values
+// [0,0,0,1] with this model encode to 020b.
+TEST(MessageDefinitions, ArithmeticModelsComeFromConfig) {
+  fs::path file = fs::temp_directory_path() / ("acomms-arith-" + std::to_string(::getpid()) + ".proto");
+  std::ofstream(file) << "syntax = \"proto2\";\nimport \"dccl/option_extensions.proto\";\n"
+                         "import \"dccl/arithmetic/protobuf/arithmetic_extensions.proto\";\n"
+                         "message Arith {\n  option (dccl.msg) = { codec_version: 4 id: 1 max_bytes: 32 };\n"
+                         "  repeated double value = 1 [(dccl.field) = { codec: \"dccl.arithmetic\" max_repeat: 4 "
+                         "[arithmetic] { model: \"config_model\" } }];\n}\n";
+  auto codec = make_codec(dccl_config(
+      "arithmetic_models { name: \"config_model\" eof_frequency: 4 value_bound: [0, 1, 2] "
+      "frequency: [5, 1] out_of_range_frequency: 0 } proto_files: \"" + file.string() + "\""));
+  auto message = codec->new_message("Arith");
+  google::protobuf::TextFormat::ParseFromString("value: [0, 0, 0, 1]", message.get());
+  EXPECT_EQ(dccl::to_hex(codec->encode(*message)), "020b");
+  fs::remove(file);
+
+  try {
+    make_codec(dccl_config("arithmetic_models { name: \"bad\" value_bound: [0, 1] frequency: [1, 2] }"));
+    FAIL() << "no error for a model with mismatched bounds";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("dccl.arithmetic_models: arithmetic model \"bad\"", 0), 0u) << e.what();
+  }
+}
+
 TEST(MessageDefinitions, ConfigRulesAreLocated) {
   try {
     core::parse_config("dccl {\n  passphrase: \"a\"\n  passphrase_file: \"/b\"\n}\n", "c.conf");

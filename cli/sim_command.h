@@ -1,0 +1,17 @@
+#pragma once
+// `acommsctl sim ...`: offline simulations, no daemon needed.
+//   sim queue-market   the seed's marketplace evaluation of the dynamic
+//                      priority (see daemon/queue/market_simulation.h)
+// Further simulations are added as subcommands of `sim` in add_sim_command.
+
+#include <CLI/CLI.hpp>
+
+namespace acomms::cli {
+
+struct GlobalOptions;
+
+// Adds `sim` (a parent that requires one subcommand) with its subcommands.
+// Returns `sim` so that others can hang more simulations beneath it.
+CLI::App* add_sim_command(CLI::App& app, const GlobalOptions& options);
+
+}  // namespace acomms::cli

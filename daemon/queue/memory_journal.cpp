@@ -1,0 +1,36 @@
+#include "queue/memory_journal.h"
+
+namespace acomms::queue {
+
+int64_t MemoryJournal::append(JournalMessage message) {
+  std::lock_guard lock(mutex_);
+  message.id = next_id_++;
+  int64_t id = message.id;
+  messages_.emplace(id, std::move(message));
+  return id;
+}
+
+void MemoryJournal::record(const QueueEvent& event) {
+  std::lock_guard lock(mutex_);
+  events_.push_back(event);
+  if (event.removes_message) messages_.erase(event.message_id);
+}
+
+std::vector<JournalMessage> MemoryJournal::load() {
+  std::lock_guard lock(mutex_);
+  std::vector<JournalMessage> out;
+  for (const auto& [id, message] : messages_) out.push_back(message);
+  return out;
+}
+
+std::vector<QueueEvent> MemoryJournal::events() const {
+  std::lock_guard lock(mutex_);
+  return events_;
+}
+
+size_t MemoryJournal::stored() const {
+  std::lock_guard lock(mutex_);
+  return messages_.size();
+}
+
+}  // namespace acomms::queue

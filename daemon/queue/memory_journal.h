@@ -1,0 +1,30 @@
+#pragma once
+// A MessageJournal in memory: for tests and simulations, where durability
+// is not the point. Keeps the event log so tests can read it.
+
+#include <map>
+#include <mutex>
+#include <vector>
+
+#include "queue/message_journal.h"
+
+namespace acomms::queue {
+
+class MemoryJournal final : public MessageJournal {
+ public:
+  int64_t append(JournalMessage message) override;
+  void record(const QueueEvent& event) override;
+  std::vector<JournalMessage> load() override;
+  void flush() override {}
+
+  std::vector<QueueEvent> events() const;
+  size_t stored() const;
+
+ private:
+  mutable std::mutex mutex_;
+  int64_t next_id_ = 1;
+  std::map<int64_t, JournalMessage> messages_;
+  std::vector<QueueEvent> events_;
+};
+
+}  // namespace acomms::queue

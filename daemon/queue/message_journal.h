@@ -1,0 +1,49 @@
+#pragma once
+// Where queued messages outlive the process. The queues keep their working
+// state in memory on the core thread; the journal holds every message that
+// a Submit acknowledged until an event ends its life, plus the event log.
+//
+// After a crash, load() gives back exactly the messages appended and not yet
+// removed; messages that were in flight (sent, awaiting an ack) come back as
+// ordinary queued messages and are sent again.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "queue/queue_event.h"
+
+namespace acomms::queue {
+
+struct JournalMessage {
+  int64_t id = 0;             // assigned by append(); the id clients see
+  std::string type;           // DCCL full type name
+  std::string payload;        // the protobuf message, serialized (binary)
+  int32_t src = -1;           // from the source role, -1 if none
+  int32_t dest = 0;           // from the destination role; 0 = broadcast
+  double submitted_at = 0;    // Clock seconds since the Unix epoch
+  double ttl_s = 0;           // per-message ttl; 0 = the queue's
+};
+
+class MessageJournal {
+ public:
+  virtual ~MessageJournal() = default;
+
+  // Stores `message` durably and returns its new id once committed. Safe
+  // from any thread; concurrent calls share commits (group commit).
+  virtual int64_t append(JournalMessage message) = 0;
+
+  // Logs `event`, and forgets its message when event.removes_message.
+  // Asynchronous: never waits for the disk (the core thread calls it), but
+  // ordered after every append() that returned before it.
+  virtual void record(const QueueEvent& event) = 0;
+
+  // Every message appended and not removed, in id order. Called at start-up,
+  // before any append().
+  virtual std::vector<JournalMessage> load() = 0;
+
+  // Returns once everything recorded so far is committed.
+  virtual void flush() = 0;
+};
+
+}  // namespace acomms::queue

@@ -1,0 +1,89 @@
+#pragma once
+// One queue: the messages of one DCCL type, in submission order, under that
+// type's policy. Owned and used by the QueueManager on the core thread only.
+
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "queue/queue_policy.h"
+#include "queue/queued_message.h"
+
+namespace acomms::queue {
+
+class Queue {
+ public:
+  Queue(std::string type, int dccl_id, QueuePolicy policy, double created_at);
+
+  const std::string& type() const { return type_; }
+  int dccl_id() const { return dccl_id_; }
+  const QueuePolicy& policy() const { return policy_; }
+  size_t size() const { return messages_.size(); }
+  size_t in_flight() const { return in_flight_ids_.size(); }
+  double last_sent() const { return last_sent_; }
+  const std::deque<QueuedMessage>& messages() const { return messages_; }
+
+  // Adds a message. When the queue is full: with DROP_OLDEST the oldest
+  // message is removed and returned in *dropped; with REFUSE_NEW nothing
+  // changes and false is returned.
+  bool push(QueuedMessage message, std::optional<QueuedMessage>* dropped);
+
+  // P(t) = value_base * (t - t_last_sent) / ttl.
+  double priority(double now) const;
+  bool in_blackout(double now) const;
+
+  // The message this queue would send next (newest or oldest first, per
+  // policy), skipping those awaiting an ack; nullptr if none.
+  const QueuedMessage* next_eligible() const;
+
+  // Marks a message sent at `now`: in flight in `frame_id` (awaiting its
+  // ack) when frame_id != 0, else removed.
+  void mark_sent(int64_t id, uint64_t frame_id, double now);
+
+  // Removes and returns the messages in flight in `frame_id`.
+  std::vector<QueuedMessage> take_acked(uint64_t frame_id);
+  // Makes every in-flight message eligible again, calling `released` for
+  // each (before its frame id is cleared).
+  template <typename Fn>
+  void release_in_flight(Fn released) {
+    for (int64_t id : in_flight_ids_) {
+      QueuedMessage& m = *find(id);
+      released(static_cast<const QueuedMessage&>(m));
+      m.in_flight_frame = 0;
+    }
+    in_flight_ids_.clear();
+  }
+  // Removes and returns messages older than their ttl at `now`.
+  std::vector<QueuedMessage> take_expired(double now);
+  // Removes a message by id (cancel); nullopt if it is not here.
+  std::optional<QueuedMessage> take(int64_t id);
+
+  // The message with `id` (binary search: ids ascend); end() if absent.
+  std::deque<QueuedMessage>::iterator find(int64_t id);
+
+  double ttl_of(const QueuedMessage& message) const {
+    return message.record.ttl_s > 0 ? message.record.ttl_s : policy_.ttl_s;
+  }
+
+ private:
+  void forget_in_flight(int64_t id);
+
+  std::string type_;
+  int dccl_id_;
+  QueuePolicy policy_;
+  // Until the first send, t_last_sent is the queue's creation time: a new
+  // queue's priority grows from zero like any other, but it is not in blackout.
+  double last_sent_;
+  bool has_sent_ = false;
+  // Submission order (ids ascending): the front is the oldest.
+  std::deque<QueuedMessage> messages_;
+  // Ids of the messages awaiting an ack, so that releasing or acking them
+  // does not walk a queue of thousands.
+  std::vector<int64_t> in_flight_ids_;
+  // No message expires before this time: lets the expiry sweep, which runs
+  // for every queue on every frame, cost nothing when nothing is due.
+  double next_expiry_ = 0;
+};
+
+}  // namespace acomms::queue

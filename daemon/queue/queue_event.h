@@ -1,0 +1,39 @@
+#pragma once
+// What happens to queued messages. Every change of a message's fate is an
+// event: counted, logged, and written to the store's event log, so that a
+// message never disappears silently.
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace acomms::queue {
+
+enum class QueueEventKind {
+  kQueued,    // accepted by Submit (durable)
+  kSent,      // placed in a frame handed to the driver
+  kAcked,     // its frame was acknowledged: done
+  kExpired,   // ttl passed before it was delivered: dropped
+  kDropped,   // pushed out by a full queue, or refused by one
+  kRetry,     // sent, not acknowledged: eligible again
+  kReceived,  // arrived from the link and was passed on
+};
+
+std::string_view to_string(QueueEventKind kind);
+
+struct QueueEvent {
+  QueueEventKind kind = QueueEventKind::kQueued;
+  double time = 0;        // Clock seconds since the Unix epoch
+  std::string type;       // DCCL message type
+  int64_t message_id = 0; // 0 for received messages
+  uint64_t frame_id = 0;  // kSent, kAcked, kRetry: the frame; 0 otherwise
+  int32_t src = -1;       // modem ids, -1 when unknown
+  int32_t dest = -1;
+  std::string detail;     // human-readable reason (e.g. "queue full: oldest dropped")
+  // True when this event ends the message's life in the queue (acked,
+  // expired, dropped, or sent in a frame that asked for no ack): the store
+  // forgets the message in the same transaction that logs the event.
+  bool removes_message = false;
+};
+
+}  // namespace acomms::queue

@@ -1,0 +1,128 @@
+#pragma once
+// The queues of one node: one per DCCL type, the priority contest between
+// them, frame building, acks, expiry, and the receive side.
+//
+// Threads: journal_new() may run on any thread (it encodes and waits for the
+// journal's commit); everything else runs on the core thread only.
+//
+// The contest, at time t, for each place in a frame: a queue takes part if
+// it is out of blackout, has a message not awaiting an ack, that message
+// fits in what is left of the frame, and its destination agrees with the
+// transmission's. The highest P = value_base * (t - t_last_sent) / ttl
+// wins; a tie goes to the queue that sent longest ago, then to the lower
+// DCCL id. The winner's message is appended and the contest runs again
+// until nothing fits.
+
+#include <google/protobuf/message.h>
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "acomms/v1/config.pb.h"
+#include "core/clock.h"
+#include "dccl/codec.h"
+#include "queue/frame.h"
+#include "queue/message_journal.h"
+#include "queue/queue.h"
+#include "queue/queue_stats.h"
+#include "queue/roles.h"
+
+namespace acomms::queue {
+
+// A message taken off the link and passed on to subscribers.
+struct ReceivedMessage {
+  std::string type;
+  std::unique_ptr<google::protobuf::Message> message;
+  int32_t src = -1;   // from the source role, else the transmission's source
+  int32_t dest = 0;
+  double time = 0;    // when it was received
+};
+
+// Submit failed because the type is not a loaded DCCL type.
+class UnknownTypeError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+class QueueManager {
+ public:
+  // One queue per type loaded in `codec`. Throws std::invalid_argument when
+  // the config names a type that is not loaded, a role field that does not
+  // exist, or an unusable policy value. `codec`, `clock` and `journal` must
+  // outlive the manager.
+  QueueManager(const dccl::Codec& codec, const v1::QueueConfig& config, int32_t own_id,
+               const core::Clock& clock, MessageJournal& journal);
+
+  // Start-up: brings back what the journal holds (after a crash, messages
+  // that were in flight come back eligible). A stored message whose type is
+  // no longer loaded, or that no longer encodes, is dropped with an event.
+  void restore();
+
+  // Any thread. Fills unset source/timestamp roles, encodes (strict mode
+  // per the codec) and journals the message durably. Throws
+  // UnknownTypeError, or dccl::Error naming the field and bound.
+  QueuedMessage journal_new(const google::protobuf::Message& message, double ttl_s = 0) const;
+
+  // Puts a journaled message in its queue. Returns false when the queue is
+  // full and refuses new messages (the message is then dropped, with an
+  // event). A full queue that drops its oldest message returns true.
+  bool accept(QueuedMessage message);
+
+  // Builds up to request.max_num_frames frames for a transmission. Messages
+  // still awaiting an ack from an earlier transmission become eligible
+  // again first, and expired ones are dropped.
+  std::vector<Frame> build_frames(const DataRequest& request);
+
+  // The receiver acknowledged `frame_id`: its messages are done.
+  void on_ack(uint64_t frame_id);
+
+  // Splits a received frame into messages and returns those for this node
+  // (destination role = own id or broadcast; all when promiscuous).
+  // Undecodable bytes end the frame: what came before is kept, the rest is
+  // counted and logged as malformed.
+  std::vector<ReceivedMessage> receive(std::string_view frame, int32_t transmission_src);
+
+  // Drops messages past their ttl now (also done on every build_frames).
+  void expire();
+
+  // Removes a queued message (Cancel). False if there is no such message.
+  bool cancel(int64_t id, const std::string& reason);
+
+  const Queue* find_queue(const std::string& type) const;
+  std::vector<const Queue*> queues() const;
+  const QueueStats& stats(const std::string& type) const;
+  uint64_t malformed_frames() const { return malformed_frames_; }
+
+ private:
+  struct TypeState {
+    std::unique_ptr<Queue> queue;
+    MessageRoles roles;
+    QueueStats stats;
+  };
+
+  struct Contender;
+  std::vector<Contender> contenders(double now);
+  TypeState* contest(std::vector<Contender>& field, double now, size_t room, int32_t dest);
+  void emit(QueueEventKind kind, TypeState& state, const JournalMessage& message, double now,
+            uint64_t frame_id, const char* detail, bool removes);
+
+  const dccl::Codec& codec_;
+  int32_t own_id_;
+  bool promiscuous_;
+  const core::Clock& clock_;
+  MessageJournal& journal_;
+  // Ordered by DCCL id: the contest's last tie-break, and a stable order for tools.
+  std::map<int, TypeState> by_id_;
+  std::unordered_map<std::string, TypeState*> by_name_;
+  // Frames awaiting an ack: frame id -> the types with messages in it.
+  std::unordered_map<uint64_t, std::vector<TypeState*>> in_flight_;
+  uint64_t next_frame_id_;
+  uint64_t malformed_frames_ = 0;
+};
+
+}  // namespace acomms::queue

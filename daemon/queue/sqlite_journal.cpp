@@ -1,0 +1,107 @@
+#include "queue/sqlite_journal.h"
+
+namespace acomms::queue {
+namespace {
+
+using store::Database;
+using store::Statement;
+
+constexpr std::string_view kInsertMessage =
+    "INSERT INTO queued_messages (type, payload, src, dest, submitted_at, ttl_s) "
+    "VALUES (?, ?, ?, ?, ?, ?)";
+constexpr std::string_view kInsertEvent =
+    "INSERT INTO event_log (time, kind, type, message_id, frame_id, src, dest, detail) "
+    "VALUES (?, ?, ?, ?, ?, ?, ?, ?)";
+constexpr std::string_view kDeleteMessage = "DELETE FROM queued_messages WHERE id = ?";
+constexpr std::string_view kLoadMessages =
+    "SELECT id, type, payload, src, dest, submitted_at, ttl_s FROM queued_messages ORDER BY id";
+
+// A cached statement left mid-step would hold the batch open; reset it
+// whichever way the work ends.
+class ResetOnExit {
+ public:
+  explicit ResetOnExit(Statement& statement) : statement_(statement) {}
+  ~ResetOnExit() { statement_.reset(); }
+  ResetOnExit(const ResetOnExit&) = delete;
+  ResetOnExit& operator=(const ResetOnExit&) = delete;
+
+ private:
+  Statement& statement_;
+};
+
+// event_log stores "none" as NULL rather than the in-memory sentinels.
+void bind_or_null(Statement& statement, int index, int64_t value, int64_t none) {
+  if (value == none) {
+    statement.bind_null(index);
+  } else {
+    statement.bind(index, value);
+  }
+}
+
+}  // namespace
+
+int64_t SqliteJournal::append(JournalMessage message) {
+  return writer_
+      .submit([this, message = std::move(message)](Database& db) {
+        Statement& insert = writer_.prepared(kInsertMessage);
+        ResetOnExit reset(insert);
+        insert.bind(1, message.type)
+            .bind_blob(2, message.payload)
+            .bind(3, int64_t{message.src})
+            .bind(4, int64_t{message.dest})
+            .bind_double(5, message.submitted_at)
+            .bind_double(6, message.ttl_s);
+        insert.step();
+        return static_cast<int64_t>(sqlite3_last_insert_rowid(db.handle()));
+      })
+      .get();
+}
+
+void SqliteJournal::record(const QueueEvent& event) {
+  writer_.post([this, event](Database&) {
+    Statement& insert = writer_.prepared(kInsertEvent);
+    ResetOnExit reset_insert(insert);
+    insert.bind_double(1, event.time).bind(2, to_string(event.kind)).bind(3, event.type);
+    bind_or_null(insert, 4, event.message_id, 0);
+    // Frame ids are unsigned; SQLite integers are signed 64-bit. The bits are
+    // kept: ids past 2^63 read back negative, but stay distinct.
+    bind_or_null(insert, 5, static_cast<int64_t>(event.frame_id), 0);
+    bind_or_null(insert, 6, event.src, -1);
+    bind_or_null(insert, 7, event.dest, -1);
+    insert.bind(8, event.detail);
+    insert.step();
+    // Same savepoint, same transaction: the event and the removal are on disk
+    // together or not at all.
+    if (event.removes_message && event.message_id != 0) {
+      Statement& remove = writer_.prepared(kDeleteMessage);
+      ResetOnExit reset_remove(remove);
+      remove.bind(1, event.message_id);
+      remove.step();
+    }
+  });
+}
+
+std::vector<JournalMessage> SqliteJournal::load() {
+  // Through the writer too: it is the only thread allowed on the connection.
+  return writer_
+      .submit([](Database& db) {
+        std::vector<JournalMessage> messages;
+        Statement query = db.prepare(kLoadMessages);
+        while (query.step()) {
+          JournalMessage& m = messages.emplace_back();
+          m.id = query.column_int64(0);
+          m.type = query.column_text(1);
+          m.payload = query.column_blob(2);
+          m.src = static_cast<int32_t>(query.column_int64(3));
+          m.dest = static_cast<int32_t>(query.column_int64(4));
+          m.submitted_at = query.column_double(5);
+          m.ttl_s = query.column_double(6);
+        }
+        return messages;
+      })
+      .get();
+}
+
+void SqliteJournal::flush() { writer_.flush(); }
+
+}  // namespace acomms::queue

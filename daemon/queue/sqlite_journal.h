@@ -1,0 +1,36 @@
+#pragma once
+// The MessageJournal of a real daemon: queued_messages and event_log in the
+// store (migrations/0002_queue.sql), written through the store's
+// GroupCommitWriter so that concurrent Submits share one fsync.
+//
+// append() waits for its commit: a Submit is answered only once its message
+// is on disk. record() does not wait (the core thread must never block on the
+// disk); it is queued behind every append() that already returned, and logs
+// the event and forgets the message in one transaction, so a crash can never
+// keep the message and lose the event that removed it, or the reverse.
+
+#include "queue/message_journal.h"
+#include "store/group_commit_writer.h"
+
+namespace acomms::queue {
+
+class SqliteJournal final : public MessageJournal {
+ public:
+  // `writer` writes the store migrated to 0002_queue or later, and must
+  // outlive the journal.
+  explicit SqliteJournal(store::GroupCommitWriter& writer) : writer_(writer) {}
+
+  // Throws store::StoreError when the message could not be stored.
+  int64_t append(JournalMessage message) override;
+  // A failure is logged by the writer: there is no caller to tell.
+  void record(const QueueEvent& event) override;
+  // Throws store::StoreError when the store cannot be read.
+  std::vector<JournalMessage> load() override;
+  // Throws store::StoreError when the last batch failed to commit.
+  void flush() override;
+
+ private:
+  store::GroupCommitWriter& writer_;
+};
+
+}  // namespace acomms::queue
