@@ -1,8 +1,9 @@
-// Durability of the SQLite journal across SIGKILL: a child process
-// (journal_crash_child) appends from several threads as fast as it can and
-// prints each id once append() returned; it is killed at a random moment,
-// and the store reopened (WAL recovery) must hold every confirmed message,
-// once, intact, and nothing the child did not attempt.
+// Durability of the queues across SIGKILL: a child process
+// (queue_crash_child) submits from several threads as fast as it can, the
+// way the daemon's Submit does, and prints each id once the submit
+// returned; it is killed at a random moment, and the queue restored from the
+// reopened store (WAL recovery) must hold every confirmed message, once,
+// intact, and nothing the child did not attempt.
 //
 // SIGKILL loses the process, not the kernel's page cache, so this proves the
 // commit protocol (nothing answered before COMMIT, WAL recovery, savepoints),
@@ -23,9 +24,15 @@
 #include <thread>
 #include <vector>
 
+#include <google/protobuf/text_format.h>
+
+#include <fstream>
+
 #include "child_process.h"
-#include "journal_crash_protocol.h"
+#include "core/clock.h"
+#include "queue/queue_manager.h"
 #include "queue/sqlite_journal.h"
+#include "queue_crash_protocol.h"
 #include "store/group_commit_writer.h"
 #include "store/store.h"
 
@@ -33,8 +40,8 @@ namespace acomms::queue {
 namespace {
 
 namespace fs = std::filesystem;
-using testing::journal_crash::kRemoveEvery;
-using testing::journal_crash::payload;
+namespace crash = acomms::testing::queue_crash;
+using crash::kRemoveEvery;
 
 constexpr int kIterations = 30;
 constexpr int kAppenders = 4;
@@ -82,35 +89,36 @@ Confirmed parse(const std::string& out) {
   return confirmed;
 }
 
-// Which (thread, seq) a stored payload is; false if it is none the child makes.
-bool identify(const JournalMessage& m, int* thread, int64_t* seq) {
-  if (m.payload.empty() || m.payload[0] != 't') return false;
-  size_t dash = m.payload.find('-');
-  size_t end = m.payload.find('\0');
-  if (dash == std::string::npos || end == std::string::npos || dash > end) return false;
-  try {
-    *thread = std::stoi(m.payload.substr(1, dash - 1));
-    *seq = std::stoll(m.payload.substr(dash + 1, end - dash - 1));
-  } catch (const std::exception&) {
-    return false;
-  }
-  return m.payload == payload(*thread, *seq);
+// Which (thread, seq) a restored message is; false if it is none the child makes.
+bool identify(const dccl::Codec& codec, const QueuedMessage& m, int* thread, int64_t* seq) {
+  auto message = codec.new_message(crash::kType);
+  if (!message->ParseFromString(m.record.payload)) return false;
+  const auto* type = message->GetDescriptor();
+  const auto* reflection = message->GetReflection();
+  *thread = reflection->GetInt32(*message, type->FindFieldByName("thread"));
+  *seq = reflection->GetInt64(*message, type->FindFieldByName("seq"));
+  // The encoding the queue will send must be the message's own.
+  return reflection->GetString(*message, type->FindFieldByName("filler")) == std::string("\0\xff", 2) + "filler" &&
+         m.encoded == codec.encode(*message);
 }
 
-class JournalCrashTest : public ::testing::Test {
+class QueueCrashTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = fs::temp_directory_path() / ("acomms_journal_crash_" + std::to_string(::getpid()));
+    root_ = fs::temp_directory_path() / ("acomms_queue_crash_" + std::to_string(::getpid()));
     fs::remove_all(root_);
     fs::create_directories(root_);
+    proto_ = (root_ / "crash.proto").string();
+    std::ofstream(proto_) << crash::kProto;
   }
   void TearDown() override {
     if (!HasFailure()) fs::remove_all(root_);
   }
   fs::path root_;
+  std::string proto_;
 };
 
-TEST_F(JournalCrashTest, EveryConfirmedAppendSurvivesSigkill) {
+TEST_F(QueueCrashTest, RestoredQueueHoldsEveryConfirmedSubmit) {
   std::mt19937 rng(kSeed);
   std::uniform_int_distribution<int> kill_after_ms(10, 300);
   int iterations_with_appends = 0;
@@ -124,7 +132,7 @@ TEST_F(JournalCrashTest, EveryConfirmedAppendSurvivesSigkill) {
 
     Confirmed confirmed;
     {
-      acomms::testing::ChildProcess child(JOURNAL_CRASH_CHILD, {dir, std::to_string(kAppenders)},
+      acomms::testing::ChildProcess child(QUEUE_CRASH_CHILD, {dir, std::to_string(kAppenders), proto_},
                                           dir + ".child");
       std::this_thread::sleep_for(std::chrono::milliseconds(delay));
       child.signal(SIGKILL);
@@ -142,30 +150,36 @@ TEST_F(JournalCrashTest, EveryConfirmedAppendSurvivesSigkill) {
     ASSERT_NO_THROW(store = std::make_unique<store::Store>(dir));
     store::GroupCommitWriter writer(store->db());
     SqliteJournal journal(writer);
-    std::vector<JournalMessage> loaded = journal.load();
+    dccl::Codec codec;
+    codec.load(proto_);
+    v1::QueueConfig config;
+    google::protobuf::TextFormat::ParseFromString(crash::kQueueConfig, &config);
+    core::SystemClock clock;
+    QueueManager queues(codec, config, 1, clock, journal);
+    queues.restore();
+    const Queue& restored = *queues.find_queue(crash::kType);
 
-    // Everything loaded is something the child attempted, exactly once, with
-    // the id it was given. Loaded is a SUBSET of attempted, not equal to the
-    // printed set: a message can be committed and the child killed before it
-    // printed the id. Such a message is the one in flight on its thread: at
-    // most last printed seq + 1.
+    // Everything restored is something the child attempted, exactly once,
+    // with the id it was given. Restored is a SUBSET of attempted, not equal
+    // to the printed set: a message can be committed and the child killed
+    // before it printed the id. Such a message is the one in flight on its
+    // thread: at most last printed seq + 1.
     std::set<std::pair<int, int64_t>> seen;
     std::set<int64_t> loaded_ids;
-    for (const JournalMessage& m : loaded) {
+    for (const QueuedMessage& m : restored.messages()) {
       int thread = -1;
       int64_t seq = -1;
-      ASSERT_TRUE(identify(m, &thread, &seq)) << "message " << m.id << " was never attempted";
-      EXPECT_EQ(m.src, thread);
-      EXPECT_EQ(m.type, "crash.Test");
+      ASSERT_TRUE(identify(codec, m, &thread, &seq)) << "message " << m.record.id << " was never attempted";
+      EXPECT_EQ(m.in_flight_frame, 0u);
       EXPECT_TRUE(seen.insert({thread, seq}).second) << "t" << thread << "-" << seq << " twice";
       int64_t last = confirmed.last_seq.count(thread) ? confirmed.last_seq[thread] : -1;
       EXPECT_LE(seq, last + 1) << "t" << thread << "-" << seq << " was never attempted";
       auto printed = confirmed.id_of.find({thread, seq});
       if (printed != confirmed.id_of.end()) {
-        EXPECT_EQ(m.id, printed->second);
+        EXPECT_EQ(m.record.id, printed->second);
       }
-      EXPECT_FALSE(confirmed.removed.count(m.id)) << "message " << m.id << " removed, yet loaded";
-      loaded_ids.insert(m.id);
+      EXPECT_FALSE(confirmed.removed.count(m.record.id)) << "message " << m.record.id << " removed, yet restored";
+      loaded_ids.insert(m.record.id);
     }
     // Every confirmed append is there, unless its removal may have committed:
     // confirmed (printed) removals must be gone; a removal recorded but not
@@ -177,22 +191,22 @@ TEST_F(JournalCrashTest, EveryConfirmedAppendSurvivesSigkill) {
           << "confirmed message " << id << " (t" << tag.first << "-" << tag.second << ") lost";
     }
     // A confirmed removal's event is in the log, from the same transaction.
-    int64_t acked_events = writer
-                               .submit([](store::Database& db) {
-                                 store::Statement q =
-                                     db.prepare("SELECT count(*) FROM event_log WHERE kind = 'acked'");
-                                 q.step();
-                                 return q.column_int64(0);
-                               })
-                               .get();
-    EXPECT_GE(acked_events, static_cast<int64_t>(confirmed.removed.size()));
+    int64_t dropped_events = writer
+                                 .submit([](store::Database& db) {
+                                   store::Statement q = db.prepare(
+                                       "SELECT count(*) FROM event_log WHERE kind = 'dropped' AND detail = 'crash test'");
+                                   q.step();
+                                   return q.column_int64(0);
+                                 })
+                                 .get();
+    EXPECT_GE(dropped_events, static_cast<int64_t>(confirmed.removed.size()));
     // Ids are never reused, not even across a crash.
     JournalMessage next;
-    next.type = "crash.Test";
+    next.type = crash::kType;
     next.payload = "after";
     EXPECT_GT(journal.append(next), confirmed.max_id);
   }
-  std::printf("journal crash: %d runs, %d with confirmed appends, %zu appends and %zu removals "
+  std::printf("queue crash: %d runs, %d with confirmed submits, %zu submits and %zu removals "
               "confirmed in all\n",
               kIterations, iterations_with_appends, total_confirmed, total_removed);
   // Most runs must get past start-up, or the test proves little.

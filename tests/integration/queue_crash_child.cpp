@@ -1,0 +1,101 @@
+// The process queue_crash_test kills: submits from several threads as fast
+// as it can, through the same path as the daemon's Submit, and reports on
+// stdout only what has been confirmed. See queue_crash_protocol.h.
+//
+//   queue_crash_child <data dir> <threads> <proto file>
+
+#include <google/protobuf/text_format.h>
+#include <spdlog/sinks/stdout_sinks.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/clock.h"
+#include "core/event_loop.h"
+#include "queue/queue_manager.h"
+#include "queue/sqlite_journal.h"
+#include "queue_crash_protocol.h"
+#include "store/group_commit_writer.h"
+#include "store/store.h"
+
+namespace {
+
+using namespace acomms;
+namespace crash = testing::queue_crash;
+
+std::mutex out_mutex;
+
+// One write(2) per line, straight to the file: nothing sits in a stdio
+// buffer to be lost by SIGKILL, and lines never interleave.
+void say(const std::string& line) {
+  std::lock_guard lock(out_mutex);
+  std::string text = line + "\n";
+  size_t done = 0;
+  while (done < text.size()) {
+    ssize_t n = ::write(STDOUT_FILENO, text.data() + done, text.size() - done);
+    if (n <= 0) std::_Exit(3);
+    done += static_cast<size_t>(n);
+  }
+}
+
+void submit_forever(const dccl::Codec& codec, queue::QueueManager& queues, core::EventLoop& core,
+                    queue::SqliteJournal& journal, int thread) {
+  auto message = codec.new_message(crash::kType);
+  const auto* type = message->GetDescriptor();
+  const auto* reflection = message->GetReflection();
+  reflection->SetInt32(message.get(), type->FindFieldByName("thread"), thread);
+  reflection->SetString(message.get(), type->FindFieldByName("filler"), std::string("\0\xff", 2) + "filler");
+  for (int64_t seq = 0;; ++seq) {
+    reflection->SetInt64(message.get(), type->FindFieldByName("seq"), seq);
+    queue::QueuedMessage queued = queues.journal_new(*message);  // durable when it returns
+    int64_t id = queued.record.id;
+    if (!core.call([&] { return queues.accept(std::move(queued)); })) std::_Exit(4);
+    say("ok " + std::to_string(id) + " " + std::to_string(thread) + " " + std::to_string(seq));
+    if (seq % crash::kRemoveEvery == 0) {
+      if (!core.call([&] { return queues.cancel(id, "crash test"); })) std::_Exit(5);
+      journal.flush();
+      say("removed " + std::to_string(id));
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 4) {
+    std::fprintf(stderr, "usage: queue_crash_child <data dir> <threads> <proto file>\n");
+    return 2;
+  }
+  // Never outlive a test runner that died before killing us.
+  ::alarm(30);
+  // stdout carries the protocol: logs go to stderr.
+  spdlog::set_default_logger(spdlog::stderr_logger_mt("queue_crash_child"));
+  spdlog::set_level(spdlog::level::err);
+  std::string dir = argv[1];
+  int threads = std::atoi(argv[2]);
+
+  store::Store store(dir);
+  store::GroupCommitWriter writer(store.db());
+  queue::SqliteJournal journal(writer);
+  dccl::Codec codec;
+  codec.load(argv[3]);
+  v1::QueueConfig config;
+  google::protobuf::TextFormat::ParseFromString(crash::kQueueConfig, &config);
+  core::SystemClock clock;
+  queue::QueueManager queues(codec, config, 1, clock, journal);
+  queues.restore();
+  core::EventLoop core;
+  core.start();
+  say("ready");
+  std::vector<std::thread> submitters;
+  for (int t = 0; t < threads; ++t) {
+    submitters.emplace_back([&, t] { submit_forever(codec, queues, core, journal, t); });
+  }
+  for (auto& submitter : submitters) submitter.join();  // until killed
+}
