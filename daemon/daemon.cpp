@@ -34,7 +34,7 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
   facts.mac = config_.mac().name();
   facts.modem_id = config_.driver().modem_id();
   facts.dccl_types = static_cast<int32_t>(codec_->types().size());
-  api_ = std::make_unique<service::AcommsService>(std::move(facts));
+  api_ = std::make_unique<service::AcommsService>(std::move(facts), *codec_, *queues_, *core_);
 
   server_ = std::make_unique<service::GrpcServer>(
       service::Endpoints{config_.grpc().unix_socket(), config_.grpc().tcp_listen()},

@@ -16,7 +16,7 @@
 #include "queue/sqlite_journal.h"
 #include "store/group_commit_writer.h"
 #include "service/grpc_server.h"
-#include "service/status_service.h"
+#include "service/acomms_service.h"
 #include "store/store.h"
 
 namespace acomms {

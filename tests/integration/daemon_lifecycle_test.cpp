@@ -17,7 +17,7 @@
 #include <fstream>
 #include <thread>
 
-#include "acomms/v1/acomms.pb.h"
+#include "acomms/v1/acomms.grpc.pb.h"
 #include "child_process.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
@@ -305,6 +305,67 @@ TEST_F(DaemonTest, BrokenDcclDefinitionsStopTheStart) {
   EXPECT_EQ(*code, 1);
   EXPECT_NE(daemon->stderr_text().find("Bad.s"), std::string::npos) << daemon->stderr_text();
   EXPECT_NE(daemon->stderr_text().find("max_length"), std::string::npos) << daemon->stderr_text();
+}
+
+// Submit through the real daemon: durable ids, every error status, and the
+// queued message still there after a restart.
+TEST_F(DaemonTest, SubmitQueuesDurablyAndRefusesBadInputClearly) {
+  const std::string gv = ACOMMS_SHARED_DIR "/conformance/dccl/gv.proto";
+  std::ofstream(config_, std::ios::app)
+      << "dccl { proto_files: \"" << gv << "\" strict: true }\n"
+      << "queue { type { type: \"gv.Num4\" policy { max_queue: 1 on_full: REFUSE_NEW } } }\n";
+  auto daemon = start_daemon("submit");
+  ASSERT_TRUE(wait_serving(*daemon)) << daemon->stderr_text();
+  auto stub = v1::Acomms::NewStub(grpc::CreateChannel("unix:" + socket_, grpc::InsecureChannelCredentials()));
+  auto submit = [&](const std::string& type, const std::string& json, v1::SubmitResponse* response) {
+    grpc::ClientContext context;
+    v1::SubmitRequest request;
+    request.set_type(type);
+    request.set_json(json);
+    return stub->Submit(&context, request, response);
+  };
+  v1::SubmitResponse ok;
+  grpc::Status status = submit("gv.NavigationReport", R"({"x": 450, "y": 550, "z": -100})", &ok);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  EXPECT_GT(ok.message_id(), 0);
+
+  v1::SubmitResponse ignored;
+  status = submit("gv.Nope", "{}", &ignored);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::NOT_FOUND);
+  EXPECT_EQ(status.error_message(), "no DCCL type \"gv.Nope\" is loaded");
+
+  status = submit("gv.NavigationReport", R"({"x": 450, "y": 550, "z": 1})", &ignored);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(status.error_message().find("gv.NavigationReport.z"), std::string::npos) << status.error_message();
+
+  status = submit("gv.NavigationReport", R"({"x": 450})", &ignored);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(status.error_message(), "json: missing field y");
+  {
+    grpc::ClientContext context;
+    v1::SubmitRequest request;
+    request.set_type("gv.NavigationReport");
+    request.set_payload(std::string("\x09", 1) + std::string(8, '\0'));  // x only, as protobuf
+    status = stub->Submit(&context, request, &ignored);
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_EQ(status.error_message(), "gv.NavigationReport: required field(s) missing: y, z");
+  }
+
+  status = submit("gv.NavigationReport", R"({"x": "not a number"})", &ignored);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(status.error_message().rfind("json: ", 0), 0u) << status.error_message();
+
+  ASSERT_TRUE(submit("gv.Num4", R"({"ri": 1, "ru": 1})", &ignored).ok());
+  status = submit("gv.Num4", R"({"ri": 2, "ru": 2})", &ignored);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(status.error_message(), "queue gv.Num4 is full (max_queue 1) and refuses new messages");
+
+  daemon->signal(SIGTERM);
+  ASSERT_EQ(daemon->wait(15s), std::optional<int>(0)) << daemon->stderr_text();
+  auto again = start_daemon("submit-again");
+  ASSERT_TRUE(wait_serving(*again)) << again->stderr_text();
+  EXPECT_NE(again->stderr_text().find("2 messages restored from the store"), std::string::npos)
+      << again->stderr_text();
 }
 
 TEST_F(DaemonTest, SecondDaemonOnTheSameDataDirIsRefused) {

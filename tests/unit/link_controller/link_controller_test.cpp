@@ -1,0 +1,181 @@
+// The glue between driver, MAC and queues: data requests filled from the
+// queues, ACK frame indices mapped back to queue frames, received frames
+// split and delivered, slots handed to the driver.
+
+#include "link/link_controller.h"
+
+#include <google/protobuf/text_format.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "queue/memory_journal.h"
+
+namespace acomms::link {
+namespace {
+
+namespace fs = std::filesystem;
+namespace pb = google::protobuf;
+
+constexpr const char* kProto = R"(syntax = "proto2";
+import "dccl/option_extensions.proto";
+package lt;
+message Status {
+  option (dccl.msg) = { codec_version: 4 id: 2 max_bytes: 16 };
+  optional int32 src = 1 [(dccl.field) = { min: 0 max: 30 }];
+  optional int32 dest = 2 [(dccl.field) = { min: 0 max: 30 }];
+  optional int32 value = 3 [(dccl.field) = { min: 0 max: 1000 }];
+}
+)";
+
+class FakeDriver final : public Driver {
+ public:
+  void start(DriverCallbacks callbacks) override { callbacks_ = std::move(callbacks); }
+  void stop() override { stopped = true; }
+  void do_work() override {}
+  void initiate_transmission(const v1::ModemTransmission& t) override {
+    initiated.push_back(t);
+    v1::ModemTransmission out = t;
+    out.set_max_frame_bytes(8);
+    out.set_max_num_frames(2);
+    callbacks_.on_data_request(&out);
+    sent.push_back(out);
+  }
+  void receive(const v1::ModemTransmission& t) { callbacks_.on_receive(t); }
+
+  DriverCallbacks callbacks_;
+  std::vector<v1::ModemTransmission> initiated, sent;
+  bool stopped = false;
+};
+
+class FakeMac final : public mac::Mac {
+ public:
+  void start(Transmit transmit) override { transmit_ = std::move(transmit); }
+  void stop() override { stopped = true; }
+  void set_cycle(const mac::Cycle& cycle) override { cycle_ = cycle; }
+  const mac::Cycle& cycle() const override { return cycle_; }
+  void on_receive(const v1::ModemTransmission&) override { ++heard; }
+  void slot(int32_t src, int32_t dest) {
+    v1::ModemTransmission t;
+    t.set_src(src);
+    t.set_dest(dest);
+    transmit_(t);
+  }
+  Transmit transmit_;
+  mac::Cycle cycle_;
+  int heard = 0;
+  bool stopped = false;
+};
+
+class LinkControllerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("acomms-link-" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    std::ofstream(dir_ / "lt.proto") << kProto;
+    codec_.load((dir_ / "lt.proto").string());
+    v1::QueueConfig config;
+    pb::TextFormat::ParseFromString(
+        R"(type { type: "lt.Status" roles { source_field: "src" destination_field: "dest" } })", &config);
+    queues_ = std::make_unique<queue::QueueManager>(codec_, config, 1, clock_, journal_);
+    link_ = std::make_unique<LinkController>(1, *queues_, mac_, driver_,
+                                             [this](queue::ReceivedMessage m, const v1::ModemTransmission&) {
+                                               delivered_.push_back(m.message->ShortDebugString());
+                                             });
+    link_->start();
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  int64_t submit(const std::string& text) {
+    auto m = codec_.new_message("lt.Status");
+    pb::TextFormat::ParseFromString(text, m.get());
+    auto queued = queues_->journal_new(*m);
+    int64_t id = queued.record.id;
+    queues_->accept(std::move(queued));
+    return id;
+  }
+
+  fs::path dir_;
+  dccl::Codec codec_;
+  core::SimulatedClock clock_{core::Clock::time_point(std::chrono::seconds(1'700'000'000))};
+  queue::MemoryJournal journal_;
+  std::unique_ptr<queue::QueueManager> queues_;
+  FakeDriver driver_;
+  FakeMac mac_;
+  std::unique_ptr<LinkController> link_;
+  std::vector<std::string> delivered_;
+};
+
+TEST_F(LinkControllerTest, SlotBecomesATransmissionFilledFromTheQueues) {
+  submit("dest: 2 value: 1");
+  submit("dest: 2 value: 2");
+  submit("dest: 2 value: 3");
+  clock_.advance(std::chrono::seconds(5));
+  mac_.slot(1, -1);
+  ASSERT_EQ(driver_.initiated.size(), 1u);
+  ASSERT_EQ(driver_.sent.size(), 1u);
+  const v1::ModemTransmission& sent = driver_.sent[0];
+  EXPECT_EQ(sent.dest(), 2);
+  EXPECT_TRUE(sent.ack_requested());
+  // 8-byte frames hold two 4-byte messages; two frames hold all three.
+  ASSERT_EQ(sent.frame_size(), 2);
+  EXPECT_EQ(codec_.decode(sent.frame(0)).size(), 2u);
+  EXPECT_EQ(codec_.decode(sent.frame(1)).size(), 1u);
+}
+
+TEST_F(LinkControllerTest, AckIndicesClearTheirFramesOnly) {
+  for (int v = 1; v <= 3; ++v) submit("dest: 2 value: " + std::to_string(v));
+  clock_.advance(std::chrono::seconds(5));
+  mac_.slot(1, -1);
+  v1::ModemTransmission ack;
+  ack.set_type(v1::ModemTransmission::ACK);
+  ack.set_src(2);
+  ack.set_dest(1);
+  ack.add_acked_frame(1);  // only the second frame arrived
+  driver_.receive(ack);
+  EXPECT_EQ(queues_->find_queue("lt.Status")->size(), 2u);
+  EXPECT_EQ(queues_->stats("lt.Status").acked, 1u);
+  EXPECT_EQ(link_->stats().acks_received, 1u);
+  // An ack meant for another node changes nothing.
+  ack.set_dest(7);
+  ack.set_acked_frame(0, 0);
+  driver_.receive(ack);
+  EXPECT_EQ(queues_->find_queue("lt.Status")->size(), 2u);
+}
+
+TEST_F(LinkControllerTest, EmptyQueuesStillSendAnEmptyBroadcast) {
+  mac_.slot(1, -1);
+  ASSERT_EQ(driver_.sent.size(), 1u);
+  EXPECT_EQ(driver_.sent[0].frame_size(), 0);
+  EXPECT_EQ(driver_.sent[0].dest(), 0);
+  EXPECT_FALSE(driver_.sent[0].ack_requested());
+}
+
+TEST_F(LinkControllerTest, ReceivedFramesAreSplitAndDeliveredWhenForUs) {
+  auto encode = [&](const std::string& text) {
+    auto m = codec_.new_message("lt.Status");
+    pb::TextFormat::ParseFromString(text, m.get());
+    return codec_.encode(*m);
+  };
+  v1::ModemTransmission data;
+  data.set_type(v1::ModemTransmission::DATA);
+  data.set_src(3);
+  data.set_dest(1);
+  data.add_frame(encode("src: 3 dest: 1 value: 5") + encode("src: 3 dest: 9 value: 6"));
+  data.add_frame(encode("src: 3 dest: 0 value: 7"));
+  driver_.receive(data);
+  EXPECT_EQ(delivered_, (std::vector<std::string>{"src: 3 dest: 1 value: 5", "src: 3 dest: 0 value: 7"}));
+  EXPECT_EQ(mac_.heard, 1);
+  EXPECT_EQ(link_->stats().messages_delivered, 2u);
+}
+
+TEST_F(LinkControllerTest, StopStopsMacAndDriver) {
+  link_->stop();
+  EXPECT_TRUE(mac_.stopped);
+  EXPECT_TRUE(driver_.stopped);
+}
+
+}  // namespace
+}  // namespace acomms::link
