@@ -2,10 +2,12 @@
 
 #include <cstdint>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "global_options.h"
+#include "mac/discovery_simulation.h"
 #include "queue/market_simulation.h"
 
 namespace acomms::cli {
@@ -50,12 +52,204 @@ void add_queue_market_command(CLI::App* sim) {
   });
 }
 
+
+// "3-6,8" -> 3,4,5,6,8. "n+1" (when allowed) -> 0, standing for the network
+// size + 1.
+std::vector<int64_t> parse_int_list(const std::string& text, const std::string& option,
+                                    bool allow_size_plus_one) {
+  std::vector<int64_t> values;
+  size_t begin = 0;
+  while (begin <= text.size()) {
+    size_t end = text.find(',', begin);
+    if (end == std::string::npos) end = text.size();
+    const std::string token = text.substr(begin, end - begin);
+    begin = end + 1;
+    if (allow_size_plus_one && token == "n+1") {
+      values.push_back(0);
+      continue;
+    }
+    try {
+      size_t used = 0;
+      const size_t dash = token.find('-', 1);
+      const int64_t low = std::stoll(token.substr(0, dash), &used);
+      if (used != token.substr(0, dash).size()) throw std::invalid_argument(token);
+      int64_t high = low;
+      if (dash != std::string::npos) {
+        high = std::stoll(token.substr(dash + 1), &used);
+        if (used != token.size() - dash - 1) throw std::invalid_argument(token);
+      }
+      if (high < low || high - low > 10000) throw std::invalid_argument(token);
+      for (int64_t v = low; v <= high; ++v) values.push_back(v);
+    } catch (const std::exception&) {
+      throw CLI::ValidationError(option, "'" + token + "' is not a number or a range A-B" +
+                                             (allow_size_plus_one ? " or n+1" : ""));
+    }
+  }
+  return values;
+}
+
+std::vector<double> parse_double_list(const std::string& text, const std::string& option) {
+  std::vector<double> values;
+  size_t begin = 0;
+  while (begin <= text.size()) {
+    size_t end = text.find(',', begin);
+    if (end == std::string::npos) end = text.size();
+    const std::string token = text.substr(begin, end - begin);
+    begin = end + 1;
+    try {
+      size_t used = 0;
+      values.push_back(std::stod(token, &used));
+      if (used != token.size()) throw std::invalid_argument(token);
+    } catch (const std::exception&) {
+      throw CLI::ValidationError(option, "'" + token + "' is not a number");
+    }
+  }
+  return values;
+}
+
+struct MacDiscoveryOptions {
+  std::vector<int32_t> ids;
+  std::vector<double> start_s = {0};
+  double slot_seconds = 15;
+  std::string coolness;   // empty: ids + 1 (scenario) or n+1 (Monte Carlo)
+  std::string p_collide;  // empty: 1 (scenario) or 1,0.75,0.5 (Monte Carlo)
+  uint32_t expire_cycles = 5;
+  uint64_t seed = 1;
+  double horizon_cycles = 200;
+  bool monte_carlo = false;
+  std::string sizes = "3-6";
+  int trials = 200;
+  double start_window_cycles = 4;
+  std::string blank_rule = "figure";
+};
+
+mac::BlankRule blank_rule_of(const std::string& name) {
+  if (name == "figure") return mac::BlankRule::kFigure;
+  if (name == "congruence") return mac::BlankRule::kCongruence;
+  if (name == "anywhere") return mac::BlankRule::kAnywhere;
+  throw CLI::ValidationError("--blank-rule", "'" + name + "': use figure, congruence or anywhere");
+}
+
+void run_mac_discovery(const MacDiscoveryOptions& options) {
+  if (!options.monte_carlo) {
+    if (options.ids.empty()) throw CLI::ValidationError("--ids", "needed (or --monte-carlo)");
+    mac::DiscoveryScenario scenario;
+    scenario.ids = options.ids;
+    scenario.start_s = options.start_s;
+    scenario.slot_seconds = options.slot_seconds;
+    scenario.expire_cycles = options.expire_cycles;
+    scenario.blank_rule = blank_rule_of(options.blank_rule);
+    scenario.seed = options.seed;
+    scenario.horizon_cycles = options.horizon_cycles;
+    scenario.coolness = static_cast<uint32_t>(options.ids.size() + 1);
+    if (!options.coolness.empty()) {
+      std::vector<int64_t> c = parse_int_list(options.coolness, "--coolness", false);
+      if (c.size() != 1 || c[0] < 1)
+        throw CLI::ValidationError("--coolness", "one value >= 1 for a single scenario");
+      scenario.coolness = static_cast<uint32_t>(c[0]);
+    }
+    if (!options.p_collide.empty()) {
+      std::vector<double> p = parse_double_list(options.p_collide, "--p-collide");
+      if (p.size() != 1) throw CLI::ValidationError("--p-collide", "one value for a single scenario");
+      scenario.p_collide = p[0];
+    }
+    mac::DiscoveryResult result = mac::simulate_discovery(scenario, true);
+    std::cout << mac::format_discovery(scenario, result) << std::flush;
+    return;
+  }
+  mac::DiscoveryMonteCarloConfig config;
+  config.sizes.clear();
+  for (int64_t n : parse_int_list(options.sizes, "--sizes", false)) {
+    if (n < 1 || n > 127) throw CLI::ValidationError("--sizes", "a network has 1 to 127 nodes");
+    config.sizes.push_back(static_cast<int>(n));
+  }
+  if (!options.coolness.empty()) {
+    config.coolness.clear();
+    for (int64_t c : parse_int_list(options.coolness, "--coolness", true)) {
+      if (c < 0) throw CLI::ValidationError("--coolness", "values must be >= 1 (or n+1)");
+      config.coolness.push_back(static_cast<uint32_t>(c));
+    }
+  }
+  if (!options.p_collide.empty()) config.p_collide = parse_double_list(options.p_collide, "--p-collide");
+  for (double p : config.p_collide)
+    if (!(p >= 0 && p <= 1)) throw CLI::ValidationError("--p-collide", "values must be within [0, 1]");
+  config.trials = options.trials;
+  config.slot_seconds = options.slot_seconds;
+  config.expire_cycles = options.expire_cycles;
+  config.blank_rule = blank_rule_of(options.blank_rule);
+  config.start_window_cycles = options.start_window_cycles;
+  config.horizon_cycles = options.horizon_cycles;
+  config.seed = options.seed;
+  std::cout << mac::format_discovery_csv(mac::simulate_discovery_monte_carlo(config)) << std::flush;
+}
+
+void add_mac_discovery_command(CLI::App* sim) {
+  static MacDiscoveryOptions options;
+  CLI::App* command = sim->add_subcommand(
+      "mac-discovery",
+      "The auto-discovery TDMA MAC (thesis 2.4.3) on a simulated one-hop channel: one scenario "
+      "slot by slot (--ids), or a Monte Carlo over random networks as CSV "
+      "nodes,coolness,p_collide,collision_prob,mean_discovery_slots,fail_pct (--monte-carlo)");
+  command->add_option("--ids", options.ids, "Scenario: the nodes' modem ids, e.g. 1,2")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1 << 30));
+  command->add_option("--start", options.start_s,
+                      "Scenario: power-on, seconds since midnight UTC; one value for all nodes or "
+                      "one per node (e.g. 0,20)")
+      ->delimiter(',')
+      ->capture_default_str();
+  command->add_option("--slot", options.slot_seconds, "Slot length, seconds")
+      ->check(CLI::Range(0.001, 86400.0))
+      ->capture_default_str();
+  command->add_option("--coolness", options.coolness,
+                      "C: scenario, one value (default: nodes + 1); Monte Carlo, a list of values "
+                      "and ranges, n+1 meaning network size + 1 (default n+1), e.g. 1-10");
+  command->add_option("--p-collide", options.p_collide,
+                      "Probability that a listener loses colliding packets: scenario, one value "
+                      "(default 1); Monte Carlo, a list (default 1,0.75,0.5)");
+  command->add_option("--expire-cycles", options.expire_cycles,
+                      "Cycles of silence after which a node is dropped")
+      ->check(CLI::Range(1u, 1000000u))
+      ->capture_default_str();
+  command->add_option("--horizon-cycles", options.horizon_cycles,
+                      "Give up this many full-network cycles after the last power-on")
+      ->check(CLI::Range(1.0, 1e6))
+      ->capture_default_str();
+  command->add_option("--blank-rule", options.blank_rule,
+                      "Blank placement (daemon/mac/blank_slot.h): figure (last slot, penultimate "
+                      "when H(k, S) mod C == 0), congruence (the same, excited when k mod C == "
+                      "S mod C, as goby-acomms) or anywhere (excited: a pseudo-random slot "
+                      "before the last)")
+      ->check(CLI::IsMember({"figure", "congruence", "anywhere"}))
+      ->capture_default_str();
+  command->add_option("--seed", options.seed, "Random seed (same seed, same output)")
+      ->capture_default_str();
+  command->add_flag("--monte-carlo", options.monte_carlo, "Random networks instead of one scenario");
+  command->add_option("--sizes", options.sizes, "Monte Carlo: network sizes, e.g. 3-6")
+      ->capture_default_str();
+  command->add_option("--trials", options.trials, "Monte Carlo: networks per point")
+      ->check(CLI::Range(1, 10000000))
+      ->capture_default_str();
+  command->add_option("--start-window-cycles", options.start_window_cycles,
+                      "Monte Carlo: power-on times spread over this many full-network cycles")
+      ->check(CLI::Range(0.0, 1e4))
+      ->capture_default_str();
+  command->callback([] {
+    try {
+      run_mac_discovery(options);
+    } catch (const std::invalid_argument& e) {
+      throw CLI::ValidationError("mac-discovery", e.what());
+    }
+  });
+}
+
 }  // namespace
 
 CLI::App* add_sim_command(CLI::App& app, const GlobalOptions&) {
   CLI::App* sim = app.add_subcommand("sim", "Offline simulations (no daemon needed)");
   sim->require_subcommand(1);
   add_queue_market_command(sim);
+  add_mac_discovery_command(sim);
   return sim;
 }
 

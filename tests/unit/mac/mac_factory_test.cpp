@@ -1,0 +1,124 @@
+// make_mac: the right MAC for each name, and clear errors for bad configs.
+
+#include "mac/mac_factory.h"
+
+#include <gtest/gtest.h>
+
+#include <google/protobuf/text_format.h>
+
+#include "mac/auto_discovery_mac.h"
+#include "mac/fixed_mac.h"
+#include "mac/polled_mac.h"
+#include "mac/silent_mac.h"
+#include "mac_test_util.h"
+
+namespace acomms::mac {
+namespace {
+
+using namespace testing;
+
+v1::MacConfig parse(const std::string& text) {
+  v1::MacConfig config;
+  EXPECT_TRUE(google::protobuf::TextFormat::ParseFromString(text, &config)) << text;
+  return config;
+}
+
+// The message of the std::invalid_argument make_mac throws ("" if none).
+std::string error_of(const std::string& text, int32_t own_id = 1) {
+  core::SimulatedScheduler scheduler(day_s(0));
+  try {
+    make_mac(parse(text), own_id, scheduler);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(MacFactory, BuildsEachKind) {
+  core::SimulatedScheduler scheduler(day_s(0));
+  const std::string slots = "slot { src: 1 seconds: 10 } slot { src: 2 dest: 1 rate: 3 seconds: 5 }";
+  EXPECT_NE(dynamic_cast<PolledMac*>(make_mac(parse("name: 'polled' " + slots), 1, scheduler).get()),
+            nullptr);
+  EXPECT_NE(dynamic_cast<FixedMac*>(make_mac(parse("name: 'fixed' " + slots), 1, scheduler).get()),
+            nullptr);
+  EXPECT_NE(dynamic_cast<AutoDiscoveryMac*>(
+                make_mac(parse("name: 'auto_discovery' slot_seconds: 15 coolness: 4 "
+                               "expire_cycles: 5 blank_rule: 'anywhere'"),
+                         1, scheduler)
+                    .get()),
+            nullptr);
+  EXPECT_NE(dynamic_cast<SilentMac*>(make_mac(parse("name: 'none'"), 1, scheduler).get()), nullptr);
+  EXPECT_NE(dynamic_cast<SilentMac*>(make_mac(parse(""), 1, scheduler).get()), nullptr);
+
+  std::unique_ptr<Mac> fixed = make_mac(parse("name: 'fixed' " + slots), 1, scheduler);
+  ASSERT_EQ(fixed->cycle().size(), 2u);
+  EXPECT_EQ(fixed->cycle()[0].dest, -1);  // unset: the queues choose
+  EXPECT_EQ(fixed->cycle()[1].dest, 1);
+  EXPECT_EQ(fixed->cycle()[1].rate, 3);
+  EXPECT_EQ(fixed->cycle()[1].seconds, 5);
+}
+
+TEST(MacFactory, SilentNeverTransmits) {
+  core::SimulatedScheduler scheduler(day_s(0));
+  FakeDriver driver(scheduler);
+  std::unique_ptr<Mac> mac = make_mac(parse("name: 'none'"), 1, scheduler);
+  mac->start(driver.transmit());
+  scheduler.run_until(day_s(1000));
+  EXPECT_TRUE(driver.sent.empty());
+}
+
+TEST(MacFactory, ClearErrors) {
+  const std::string unknown = error_of("name: 'aloha'");
+  EXPECT_NE(unknown.find("\"aloha\" is unknown"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("\"auto_discovery\", \"fixed\", \"none\", \"polled\""), std::string::npos)
+      << unknown;
+
+  EXPECT_NE(error_of("name: 'fixed'").find("at least one slot"), std::string::npos);
+  EXPECT_NE(error_of("name: 'polled'").find("at least one slot"), std::string::npos);
+  const std::string zero = error_of("name: 'fixed' slot { src: 1 seconds: 0 }");
+  EXPECT_NE(zero.find("mac.slot[0].seconds must be positive"), std::string::npos) << zero;
+  EXPECT_NE(error_of("name: 'polled' slot { src: 1 seconds: -3 }").find("must be positive"),
+            std::string::npos);
+  EXPECT_NE(error_of("name: 'polled' slot { src: 1 seconds: 1 } slot { src: 0 seconds: 1 }")
+                .find("mac.slot[1].src"),
+            std::string::npos);
+  EXPECT_NE(error_of("name: 'fixed' slot { src: 1 seconds: 90000 }").find("set mac.epoch"),
+            std::string::npos);
+  EXPECT_EQ(error_of("name: 'fixed' slot { src: 1 seconds: 90000 } epoch: 0"), "");
+  EXPECT_NE(error_of("name: 'fixed' slot { src: 1 seconds: 10 }", 0).find("modem id"),
+            std::string::npos);
+
+  EXPECT_NE(error_of("name: 'auto_discovery' coolness: 3 expire_cycles: 5")
+                .find("mac.slot_seconds must be positive"),
+            std::string::npos);
+  EXPECT_NE(error_of("name: 'auto_discovery' slot_seconds: 10 expire_cycles: 5").find("mac.coolness"),
+            std::string::npos);
+  EXPECT_NE(error_of("name: 'auto_discovery' slot_seconds: 10 coolness: 3").find("mac.expire_cycles"),
+            std::string::npos);
+  EXPECT_NE(error_of("name: 'auto_discovery' slot_seconds: 10 coolness: 3 expire_cycles: 5 "
+                     "blank_rule: 'middle'")
+                .find("mac.blank_rule \"middle\" is unknown"),
+            std::string::npos);
+  EXPECT_NE(error_of("name: 'auto_discovery' slot_seconds: 10 coolness: 3 expire_cycles: 5 "
+                     "slot { src: 1 seconds: 1 }")
+                .find("mac.slot is not used"),
+            std::string::npos);
+}
+
+TEST(MacFactory, SetCycleErrors) {
+  core::SimulatedScheduler scheduler(day_s(0));
+  std::unique_ptr<Mac> fixed =
+      make_mac(parse("name: 'fixed' slot { src: 1 seconds: 10 }"), 1, scheduler);
+  EXPECT_THROW(fixed->set_cycle({}), std::invalid_argument);
+  std::unique_ptr<Mac> auto_mac = make_mac(
+      parse("name: 'auto_discovery' slot_seconds: 10 coolness: 3 expire_cycles: 5"), 1, scheduler);
+  try {
+    auto_mac->set_cycle({slot(1, 10)});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("\"fixed\""), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace acomms::mac
