@@ -2,7 +2,11 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "core/systemd_notify.h"
+#include "mac/mac_factory.h"
+#include "register_drivers.h"
 #include "message_definitions.h"
 
 namespace acomms {
@@ -23,8 +27,12 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
   queues_->restore();
   core_ = std::make_unique<core::EventLoop>();
   expiry_timer_ = std::make_unique<asio::steady_timer>(core_->context());
+  build_link();
   core_->start();
-  core_->post([this] { schedule_expiry(); });
+  core_->call([this] {
+    schedule_expiry();
+    link_->start();  // the supervisor retries a driver that fails to start
+  });
 
   service::DaemonFacts facts;
   facts.version = ACOMMS_VERSION;
@@ -46,6 +54,48 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
 
 Daemon::~Daemon() { stop(); }
 
+// Driver, MAC and the glue between them and the queues. Configuration
+// mistakes (unknown driver, bad cycle) stop the start-up here; device
+// failures later are the supervisor's to retry.
+void Daemon::build_link() {
+  const auto own_id = static_cast<int32_t>(config_.driver().modem_id());
+  scheduler_ = std::make_unique<core::AsioScheduler>(core_->context(), clock_);
+  register_builtin_drivers(drivers_);
+  const std::string& name = config_.driver().name();
+  auto known = drivers_.names();
+  if (std::find(known.begin(), known.end(), name) == known.end()) {
+    std::string list;
+    for (const auto& n : known) list += (list.empty() ? "" : ", ") + n;
+    throw std::runtime_error("driver.name \"" + name + "\" is not a driver (known: " + list + ")");
+  }
+  link::DriverContext context{config_.driver(), *scheduler_, &core_->context()};
+  // Built once now so that a bad driver block is a start-up error.
+  try {
+    (void)drivers_.create(name, context);
+  } catch (const link::DriverError&) {
+    // The device itself is the supervisor's concern: it retries.
+  } catch (const std::exception& e) {
+    throw std::runtime_error("driver " + name + ": " + e.what());
+  }
+  link::SupervisorOptions options = link::SupervisorOptions::from_config(config_.driver());
+  options.driver_name = name;
+  driver_ = std::make_unique<link::DriverSupervisor>(
+      [this, name] {
+        link::DriverContext context{config_.driver(), *scheduler_, &core_->context()};
+        return drivers_.create(name, context);
+      },
+      *scheduler_, options);
+  try {
+    mac_ = mac::make_mac(config_.mac(), own_id, *scheduler_);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(std::string("mac config: ") + e.what());
+  }
+  link_ = std::make_unique<link::LinkController>(
+      own_id, *queues_, *mac_, *driver_, [](queue::ReceivedMessage message, const v1::ModemTransmission& from) {
+        spdlog::info("received {} from {} (transmission from {})", message.type, message.src, from.src());
+      });
+}
+
 // Messages expire on time even when no transmission comes to notice them.
 void Daemon::schedule_expiry() {
   expiry_timer_->expires_after(std::chrono::seconds(1));
@@ -61,7 +111,12 @@ void Daemon::stop() {
   core::systemd_notify("STOPPING=1");
   if (server_) server_->shutdown(std::chrono::seconds(2));
   server_.reset();
+  if (core_ && link_) core_->call([this] { link_->stop(); });
   if (core_) core_->stop();
+  link_.reset();
+  mac_.reset();
+  driver_.reset();
+  scheduler_.reset();
   expiry_timer_.reset();
   core_.reset();
   queues_.reset();

@@ -11,6 +11,11 @@
 
 #include "core/clock.h"
 #include "core/event_loop.h"
+#include "core/scheduler.h"
+#include "link/driver_registry.h"
+#include "link/driver_supervisor.h"
+#include "link/link_controller.h"
+#include "mac/mac.h"
 #include "dccl/codec.h"
 #include "queue/queue_manager.h"
 #include "queue/sqlite_journal.h"
@@ -35,6 +40,7 @@ class Daemon {
 
  private:
   void schedule_expiry();
+  void build_link();
 
   v1::Config config_;
   core::SystemClock clock_;
@@ -46,6 +52,12 @@ class Daemon {
   std::unique_ptr<queue::QueueManager> queues_;
   std::unique_ptr<core::EventLoop> core_;
   std::unique_ptr<asio::steady_timer> expiry_timer_;
+  // The link, on the core thread: driver (supervised), MAC, and the glue.
+  std::unique_ptr<core::AsioScheduler> scheduler_;
+  link::DriverRegistry drivers_;
+  std::unique_ptr<link::DriverSupervisor> driver_;
+  std::unique_ptr<mac::Mac> mac_;
+  std::unique_ptr<link::LinkController> link_;
   std::unique_ptr<service::AcommsService> api_;
   std::unique_ptr<service::GrpcServer> server_;
 };

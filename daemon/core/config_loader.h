@@ -13,7 +13,9 @@ namespace acomms::core {
 inline constexpr std::string_view kDefaultDataDir = "/var/lib/acommsd";
 inline constexpr std::string_view kDefaultUnixSocket = "/run/acommsd/acommsd.sock";
 inline constexpr std::string_view kDefaultDriver = "sim";
-inline constexpr std::string_view kDefaultMac = "fixed";
+// No medium access until a cycle is configured: a node never transmits
+// into a network whose schedule it does not know.
+inline constexpr std::string_view kDefaultMac = "none";
 
 // Parses `text` (named `file_name` in errors), validates it and fills in
 // defaults. Throws ConfigError.

@@ -51,8 +51,11 @@ void LinkController::on_data_request(v1::ModemTransmission* transmission) {
     frame_ids.push_back(frame.frame_id);
     ack = ack || frame.ack_requested;
   }
-  // With nothing to send the transmission still goes out (an empty DATA
-  // tells auto-discovery neighbours we exist), to broadcast, unacked.
+  // With nothing to send the slot is still used: one empty frame, to
+  // broadcast, unacked. Being heard in its slot is how auto-discovery
+  // neighbours learn that a node exists (a transmission without frames
+  // would be a poll).
+  if (frames.empty()) transmission->add_frame("");
   int32_t dest = frames.empty() ? queue::kBroadcast : frames.front().dest;
   if (request.dest == queue::kAnyDestination) transmission->set_dest(dest);
   transmission->set_ack_requested(ack);

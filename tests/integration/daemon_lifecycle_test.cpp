@@ -76,7 +76,7 @@ class DaemonTest : public ::testing::Test {
                            << "log_level: DEBUG\n"
                            << "grpc { unix_socket: \"" << socket_ << "\" }\n"
                            << "driver { name: \"sim\" modem_id: 3 }\n"
-                           << "mac { name: \"fixed\" }\n";
+                           << "mac { name: \"fixed\" slot { src: 3 seconds: 10 } }\n";
   }
   void TearDown() override { fs::remove_all(dir_); }
 

@@ -48,7 +48,7 @@ TEST(ConfigLoader, EmptyFileGivesDefaults) {
   EXPECT_EQ(config.log_level(), v1::INFO);
   EXPECT_EQ(config.driver().name(), "sim");
   EXPECT_EQ(config.driver().modem_id(), 1u);
-  EXPECT_EQ(config.mac().name(), "fixed");
+  EXPECT_EQ(config.mac().name(), "none");
 }
 
 // The printed example claims to show every default: hold it to that.

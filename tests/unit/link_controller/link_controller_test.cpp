@@ -148,7 +148,8 @@ TEST_F(LinkControllerTest, AckIndicesClearTheirFramesOnly) {
 TEST_F(LinkControllerTest, EmptyQueuesStillSendAnEmptyBroadcast) {
   mac_.slot(1, -1);
   ASSERT_EQ(driver_.sent.size(), 1u);
-  EXPECT_EQ(driver_.sent[0].frame_size(), 0);
+  ASSERT_EQ(driver_.sent[0].frame_size(), 1);
+  EXPECT_EQ(driver_.sent[0].frame(0), "");
   EXPECT_EQ(driver_.sent[0].dest(), 0);
   EXPECT_FALSE(driver_.sent[0].ack_requested());
 }

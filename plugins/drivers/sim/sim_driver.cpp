@@ -1,0 +1,307 @@
+#include "sim/sim_driver.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "link/rate_table.h"
+#include "link/transmission_rules.h"
+#include "sim/loopback_medium.h"
+
+namespace acomms::drivers {
+
+using v1::ModemTransmission;
+using Clock = core::Clock;
+
+namespace {
+
+constexpr double kDefaultSoundSpeed = 1500;  // m/s, sea water
+// Our transmissions older than this cannot overlap an arrival still to come.
+constexpr auto kHistory = std::chrono::minutes(5);
+
+double seconds_since_epoch(Clock::time_point t) {
+  return std::chrono::duration<double>(t.time_since_epoch()).count();
+}
+
+std::chrono::nanoseconds seconds(double s) {
+  return std::chrono::nanoseconds(static_cast<int64_t>(std::llround(s * 1e9)));
+}
+
+bool overlap(Clock::time_point a_start, Clock::time_point a_end, Clock::time_point b_start,
+             Clock::time_point b_end) {
+  // Half-open: a packet ending exactly as another starts does not collide.
+  return a_start < b_end && b_start < a_end;
+}
+
+void validate(const v1::DriverConfig& config) {
+  const auto& sim = config.sim();
+  auto bad = [](const std::string& what) { return std::invalid_argument("driver.sim." + what); };
+  if (sim.sound_speed() < 0 || !std::isfinite(sim.sound_speed())) {
+    throw bad("sound_speed must be > 0 m/s (0: 1500), got " + std::to_string(sim.sound_speed()));
+  }
+  if (!(sim.loss_probability() >= 0 && sim.loss_probability() <= 1)) {
+    throw bad("loss_probability must be in [0, 1], got " + std::to_string(sim.loss_probability()));
+  }
+  if (sim.max_range_m() < 0 || !std::isfinite(sim.max_range_m())) {
+    throw bad("max_range_m must be >= 0 (0: no range loss), got " + std::to_string(sim.max_range_m()));
+  }
+  if (sim.listen().empty() && sim.peers_size() > 0) {
+    throw bad("peers are set but listen is empty: a loopback node needs its own address");
+  }
+}
+
+std::unique_ptr<SimMedium> join_channel(const v1::DriverConfig& config, SimChannel* channel) {
+  validate(config);
+  if (channel == nullptr) throw std::invalid_argument("sim driver: no channel given");
+  return channel->connect();
+}
+
+std::unique_ptr<SimMedium> loopback_or_alone(const v1::DriverConfig& config, asio::io_context* io_context) {
+  validate(config);
+  if (config.sim().listen().empty()) return nullptr;
+  if (io_context == nullptr) {
+    throw std::invalid_argument("driver.sim.listen is set but no event loop was given for the loopback socket");
+  }
+  std::vector<std::string> peers(config.sim().peers().begin(), config.sim().peers().end());
+  return std::make_unique<LoopbackMedium>(*io_context, config.sim().listen(), peers);
+}
+
+}  // namespace
+
+SimDriver::SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler,
+                     std::shared_ptr<SimChannel> channel)
+    : SimDriver(config, scheduler, join_channel(config, channel.get()), channel ? channel->seed() : 0) {}
+
+SimDriver::SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler, asio::io_context* io_context)
+    : SimDriver(config, scheduler, loopback_or_alone(config, io_context), 0) {}
+
+SimDriver::SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler,
+                     std::unique_ptr<SimMedium> medium, uint32_t default_seed)
+    : id_(link::own_modem_id(config)),
+      position_{config.sim().position().x(), config.sim().position().y(), config.sim().position().z()},
+      sound_speed_(config.sim().sound_speed() > 0 ? config.sim().sound_speed() : kDefaultSoundSpeed),
+      loss_probability_(config.sim().loss_probability()),
+      max_range_m_(config.sim().max_range_m()),
+      scheduler_(scheduler),
+      medium_(std::move(medium)) {
+  uint32_t seed = config.sim().seed() != 0 ? config.sim().seed() : default_seed;
+  if (seed == 0) seed = std::random_device{}();
+  // Mixed with the id so that nodes on one channel draw independently.
+  std::seed_seq sequence{seed, static_cast<uint32_t>(id_)};
+  rng_.seed(sequence);
+}
+
+SimDriver::~SimDriver() { stop(); }
+
+void SimDriver::start(link::DriverCallbacks callbacks) {
+  stop();
+  callbacks_ = std::move(callbacks);
+  if (medium_) {
+    medium_->open([this](const SimEnvelope& envelope) { hear(envelope); },
+                  [this](std::string_view bytes) {
+                    if (callbacks_.on_raw) callbacks_.on_raw(bytes, false);
+                  });
+  }
+  running_ = true;
+  spdlog::info("sim modem {}: at ({}, {}, {}) m, c = {} m/s", id_, position_.x, position_.y, position_.z,
+               sound_speed_);
+}
+
+void SimDriver::stop() {
+  if (medium_) medium_->close();
+  for (auto id : tasks_) scheduler_.cancel(id);
+  tasks_.clear();
+  arrivals_.clear();
+  own_transmissions_.clear();
+  busy_until_ = {};
+  running_ = false;
+  callbacks_ = {};
+}
+
+void SimDriver::do_work() {
+  if (!running_) throw link::DriverError("sim modem " + std::to_string(id_) + " is not started");
+  auto horizon = scheduler_.clock().now() - kHistory;
+  std::erase_if(own_transmissions_, [&](const Interval& i) { return i.end < horizon; });
+}
+
+const SimStats& SimDriver::stats() const {
+  stats_.garbage = medium_ ? medium_->garbage_received() : 0;
+  return stats_;
+}
+
+uint16_t SimDriver::listen_port() const {
+  auto* loopback = dynamic_cast<LoopbackMedium*>(medium_.get());
+  return loopback ? loopback->local_port() : 0;
+}
+
+double SimDriver::loss_probability(double range_m) const {
+  double range_loss = max_range_m_ > 0 ? std::min(1.0, range_m / max_range_m_) : 0.0;
+  return 1.0 - (1.0 - loss_probability_) * (1.0 - range_loss);
+}
+
+double SimDriver::uniform() {
+  // 53 random bits: the same numbers with every standard library.
+  return static_cast<double>(rng_() >> 11) * 0x1.0p-53;
+}
+
+core::Scheduler::TaskId SimDriver::schedule(Clock::time_point when, std::function<void()> task) {
+  auto id_holder = std::make_shared<core::Scheduler::TaskId>(0);
+  auto id = scheduler_.at(when, [this, id_holder, task = std::move(task)] {
+    tasks_.erase(*id_holder);
+    task();
+  });
+  *id_holder = id;
+  tasks_.insert(id);
+  return id;
+}
+
+void SimDriver::report(const ModemTransmission& transmission, bool ok, const std::string& error) {
+  if (!ok) spdlog::warn("sim modem {}: transmission not sent: {}", id_, error);
+  if (callbacks_.on_transmit_result) callbacks_.on_transmit_result(transmission, ok, error);
+}
+
+void SimDriver::initiate_transmission(const ModemTransmission& request) {
+  if (!running_) throw link::DriverError("sim modem " + std::to_string(id_) + " is not started");
+  if (link::is_poll_request(request, id_)) {
+    // Third-party initiation: a mini-packet that tells node src to send.
+    ModemTransmission poll = request;
+    poll.clear_frame();
+    poll.set_type(ModemTransmission::DATA);
+    std::string error;
+    if (!transmit(poll, link::kMiniPacket, /*report=*/true, &error)) report(poll, false, error);
+    return;
+  }
+  if (request.type() != ModemTransmission::DATA) {
+    std::string error;
+    if (!transmit(request, link::kMiniPacket, true, &error)) report(request, false, error);
+    return;
+  }
+  send_data(request);
+}
+
+void SimDriver::send_data(ModemTransmission tx) {
+  std::string error = link::prepare_data(&tx, id_);
+  if (error.empty() && callbacks_.on_data_request) callbacks_.on_data_request(&tx);
+  if (error.empty()) error = link::check_frames(tx);
+  if (error.empty() && tx.frame_size() == 0) error = "nothing to send: the data request gave no frames";
+  if (!error.empty()) return report(tx, false, error);
+  if (tx.dest() < 0) tx.set_dest(0);  // the queues did not choose: broadcast
+  auto air_time = link::packet_air_time(*link::find_rate(tx.rate()), static_cast<uint32_t>(tx.frame_size()));
+  if (!transmit(tx, air_time, true, &error)) report(tx, false, error);
+}
+
+bool SimDriver::transmit(ModemTransmission tx, std::chrono::nanoseconds air_time, bool report_result,
+                         std::string* error) {
+  Clock::time_point now = scheduler_.clock().now();
+  if (now < busy_until_) {
+    char until[64];
+    std::snprintf(until, sizeof until, "%.3f", seconds_since_epoch(busy_until_));
+    *error = "modem " + std::to_string(id_) + " is busy transmitting until " + until;
+    return false;
+  }
+  tx.set_time(seconds_since_epoch(now));
+  Interval interval{now, now + air_time};
+  busy_until_ = interval.end;
+  own_transmissions_.push_back(interval);
+  // Half-duplex: whatever is arriving while we transmit is lost to us.
+  for (auto& [key, arrival] : arrivals_) {
+    if (overlap(arrival.interval.start, arrival.interval.end, interval.start, interval.end)) arrival.deaf = true;
+  }
+  SimEnvelope envelope{id_, position_, now, air_time, tx};
+  ++stats_.sent;
+  if (callbacks_.on_raw) callbacks_.on_raw(encode(envelope), true);
+  if (medium_) {
+    std::string problem = medium_->send(envelope);
+    if (!problem.empty()) spdlog::debug("sim modem {}: {}", id_, problem);
+  }
+  if (report_result) {
+    // The modem says a packet has gone once it is all in the water.
+    schedule(interval.end, [this, tx] { report(tx, true, ""); });
+  }
+  return true;
+}
+
+void SimDriver::hear(const SimEnvelope& envelope) {
+  if (!running_ || envelope.sender == id_) return;
+  ++stats_.heard;
+  Arrival arrival;
+  arrival.range_m = distance(position_, envelope.position);
+  arrival.interval.start = envelope.start + seconds(arrival.range_m / sound_speed_);
+  arrival.interval.end = arrival.interval.start + envelope.duration;
+  arrival.envelope = envelope;
+  for (auto& [key, other] : arrivals_) {
+    if (overlap(other.interval.start, other.interval.end, arrival.interval.start, arrival.interval.end)) {
+      other.collided = true;
+      arrival.collided = true;
+    }
+  }
+  for (const auto& own : own_transmissions_) {
+    if (overlap(own.start, own.end, arrival.interval.start, arrival.interval.end)) arrival.deaf = true;
+  }
+  uint64_t key = next_arrival_++;
+  auto end = arrival.interval.end;
+  arrivals_.emplace(key, std::move(arrival));
+  schedule(end, [this, key] { finish_arrival(key); });
+}
+
+void SimDriver::finish_arrival(uint64_t key) {
+  auto it = arrivals_.find(key);
+  if (it == arrivals_.end()) return;
+  Arrival arrival = std::move(it->second);
+  arrivals_.erase(it);
+  if (arrival.collided) {
+    ++stats_.lost_collision;
+    spdlog::debug("sim modem {}: packet from {} lost in a collision", id_, arrival.envelope.sender);
+  } else if (arrival.deaf) {
+    ++stats_.lost_half_duplex;
+    spdlog::debug("sim modem {}: packet from {} lost: we were transmitting", id_, arrival.envelope.sender);
+  } else if (uniform() < loss_probability(arrival.range_m)) {
+    ++stats_.lost_random;
+    spdlog::debug("sim modem {}: packet from {} lost at {:.0f} m", id_, arrival.envelope.sender,
+                  arrival.range_m);
+  } else {
+    ++stats_.received;
+    deliver(arrival);
+  }
+}
+
+void SimDriver::deliver(const Arrival& arrival) {
+  ModemTransmission rx = arrival.envelope.transmission;
+  rx.set_time(seconds_since_epoch(arrival.interval.end));
+  char quality[96];
+  std::snprintf(quality, sizeof quality, "sim range_m=%.1f delay_s=%.4f", arrival.range_m,
+                arrival.range_m / sound_speed_);
+  rx.set_link_quality(quality);
+  Clock::time_point answer_at = arrival.interval.end + kTurnaround;
+
+  // The envelope says who really sent it: DATA under another node's id is a poll.
+  bool poll = rx.type() == ModemTransmission::DATA && rx.src() != arrival.envelope.sender;
+  if (poll) {
+    if (rx.src() == id_) {
+      ModemTransmission answer = link::make_poll_response(rx, id_);
+      send_when_free(answer_at, [this, answer] { send_data(answer); });
+    }
+    return;
+  }
+  if (link::should_report(rx, id_) && callbacks_.on_receive) callbacks_.on_receive(rx);
+  if (running_ && link::wants_ack(rx, id_)) {
+    ModemTransmission ack = link::make_ack(rx, id_);
+    send_when_free(answer_at, [this, ack] {
+      std::string error;
+      transmit(ack, link::kMiniPacket, /*report=*/false, &error);
+    });
+  }
+}
+
+void SimDriver::send_when_free(Clock::time_point when, std::function<void()> send) {
+  schedule(when, [this, send = std::move(send)] {
+    Clock::time_point now = scheduler_.clock().now();
+    if (now < busy_until_) return send_when_free(busy_until_ + kTurnaround, send);
+    send();
+  });
+}
+
+}  // namespace acomms::drivers

@@ -1,0 +1,140 @@
+#pragma once
+// "sim": an acoustic modem simulator, so that the MAC, the queues and whole
+// multi-vehicle missions can be exercised without water.
+//
+// Physics, worked out by each receiving node from the sender's envelope:
+//  - Delay: sound leaves the sender at `start` and reaches a node at range r
+//    after r / c (c = sim.sound_speed, 1500 m/s by default). The packet is
+//    in the water for its air time (link/rate_table.h), so a receiver has it
+//    from start + r/c to start + r/c + air time, and reports it at the end.
+//  - Loss: two independent causes. A fixed chance p (sim.loss_probability)
+//    and a range-dependent one, r / sim.max_range_m (reaching 1 at that
+//    range; none when max_range_m is 0). A packet survives only if it
+//    survives both: P(loss) = 1 - (1 - p) (1 - min(1, r / max_range)).
+//    A packet is lost or heard whole (frames are not lost one by one).
+//  - Half-duplex: a node hears nothing while it transmits. A packet whose
+//    arrival overlaps any of the node's own transmissions is lost at that
+//    node, including one that began while it was transmitting (a modem
+//    that missed a packet's start cannot lock on to it afterwards).
+//  - Collisions: two packets whose arrivals overlap at a node destroy each
+//    other there (and only there: elsewhere they may arrive apart).
+// Protocol, as driver.h asks: DATA addressed to this node with
+// ack_requested is answered after a turnaround (kTurnaround) with a
+// software ACK listing all its frames, itself a packet subject to the same
+// physics; a poll (a request whose src is another node) is a short
+// mini-packet, and the polled node answers it after the turnaround with a
+// data request and its own DATA. A node is busy while it transmits: the
+// MAC's transmission then fails ("busy"); ACKs and poll answers wait.
+//
+// Two channels:
+//  - in process: nodes share a SimChannel (usually on one SimulatedScheduler;
+//    deterministic with the channel's or the config's seed);
+//  - loopback: nodes in separate processes, in real time, exchanging
+//    envelopes over UDP (sim.listen, sim.peers) on the core io_context.
+// With neither (no channel, empty sim.listen) the node is alone: its
+// transmissions go out and nobody hears them.
+
+#include <asio/io_context.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <random>
+#include <unordered_set>
+#include <vector>
+
+#include "acomms/v1/config.pb.h"
+#include "core/scheduler.h"
+#include "link/driver.h"
+#include "sim/sim_channel.h"
+#include "sim/sim_envelope.h"
+#include "sim/sim_medium.h"
+
+namespace acomms::drivers {
+
+// Time from the end of a received packet to the start of the answer (ACK,
+// poll response): the Micro-Modem's receive-to-transmit turnaround, roughly.
+inline constexpr std::chrono::milliseconds kTurnaround{500};
+
+struct SimStats {
+  uint64_t sent = 0;              // packets this node put in the water
+  uint64_t heard = 0;             // envelopes from other nodes
+  uint64_t received = 0;          // packets that arrived intact
+  uint64_t lost_random = 0;       // lost to the loss draw (fixed or range)
+  uint64_t lost_collision = 0;    // destroyed by an overlapping packet
+  uint64_t lost_half_duplex = 0;  // arrived while this node transmitted
+  uint64_t garbage = 0;           // malformed loopback datagrams dropped
+};
+
+class SimDriver final : public link::Driver {
+ public:
+  // In process: the node joins `channel` when started.
+  SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler, std::shared_ptr<SimChannel> channel);
+  // Loopback (config.sim.listen set; needs `io_context`) or alone.
+  SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler, asio::io_context* io_context);
+  ~SimDriver() override;
+
+  void start(link::DriverCallbacks callbacks) override;
+  void stop() override;
+  void do_work() override;
+  void initiate_transmission(const v1::ModemTransmission& transmission) override;
+
+  int32_t modem_id() const { return id_; }
+  const SimPosition& position() const { return position_; }
+  // Moves the node (a vehicle under way); later transmissions see it there.
+  void set_position(const SimPosition& position) { position_ = position; }
+  const SimStats& stats() const;
+  // Loss probability at range `range_m` (see the file comment).
+  double loss_probability(double range_m) const;
+  // The loopback port when listening (after start; 0 otherwise).
+  uint16_t listen_port() const;
+
+ private:
+  struct Interval {
+    core::Clock::time_point start, end;
+  };
+  struct Arrival {
+    Interval interval;
+    SimEnvelope envelope;
+    double range_m = 0;
+    bool collided = false;
+    bool deaf = false;  // overlapped one of our transmissions
+  };
+
+  SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler, std::unique_ptr<SimMedium> medium,
+            uint32_t default_seed);
+
+  void hear(const SimEnvelope& envelope);
+  void finish_arrival(uint64_t key);
+  void deliver(const Arrival& arrival);
+  // Our own DATA (the MAC's, or the answer to a poll): data request, check, send.
+  void send_data(v1::ModemTransmission transmission);
+  // Puts a packet in the water now; false (and `error`) if busy.
+  bool transmit(v1::ModemTransmission transmission, std::chrono::nanoseconds air_time, bool report,
+                std::string* error);
+  // ACKs and poll answers: at `when`, or once we stop transmitting.
+  void send_when_free(core::Clock::time_point when, std::function<void()> send);
+  void report(const v1::ModemTransmission& transmission, bool ok, const std::string& error);
+  core::Scheduler::TaskId schedule(core::Clock::time_point when, std::function<void()> task);
+  double uniform();
+
+  int32_t id_;
+  SimPosition position_;
+  double sound_speed_;
+  double loss_probability_;
+  double max_range_m_;
+  core::Scheduler& scheduler_;
+  std::unique_ptr<SimMedium> medium_;
+  std::mt19937_64 rng_;
+  link::DriverCallbacks callbacks_;
+  bool running_ = false;
+  core::Clock::time_point busy_until_;
+  std::vector<Interval> own_transmissions_;  // recent, for half-duplex
+  std::map<uint64_t, Arrival> arrivals_;     // packets on their way to us
+  uint64_t next_arrival_ = 1;
+  std::unordered_set<core::Scheduler::TaskId> tasks_;
+  mutable SimStats stats_;
+};
+
+}  // namespace acomms::drivers

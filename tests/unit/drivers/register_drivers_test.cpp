@@ -1,0 +1,74 @@
+#include "register_drivers.h"
+
+#include <gtest/gtest.h>
+
+#include "sim/sim_channel.h"
+#include "sim/sim_driver.h"
+
+namespace acomms {
+namespace {
+
+using std::chrono::seconds;
+
+TEST(RegisterDriversTest, SimAndUdpByName) {
+  link::DriverRegistry registry;
+  register_builtin_drivers(registry);
+  EXPECT_EQ(registry.names(), (std::vector<std::string>{"sim", "udp"}));
+
+  core::SimulatedScheduler scheduler(core::Clock::time_point(seconds(1'700'000'000)));
+  v1::DriverConfig config;
+  config.set_name("sim");
+  auto alone = registry.create("sim", {config, scheduler});  // no listen: an isolated node
+  ASSERT_NE(alone, nullptr);
+  alone->start({});
+  alone->stop();
+
+  config.mutable_sim()->set_max_range_m(-1);
+  try {
+    registry.create("sim", {config, scheduler});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("driver.sim.max_range_m"), std::string::npos);
+  }
+
+  v1::DriverConfig udp;
+  udp.mutable_udp()->set_listen("127.0.0.1:0");
+  EXPECT_THROW(registry.create("udp", {udp, scheduler}), std::invalid_argument);  // no event loop
+  asio::io_context io;
+  link::DriverContext with_io{udp, scheduler, &io};
+  auto driver = registry.create("udp", with_io);
+  ASSERT_NE(driver, nullptr);
+  driver->start({});
+  driver->stop();
+}
+
+TEST(RegisterDriversTest, SimChannelDriverPutsEveryNodeOnTheChannel) {
+  link::DriverRegistry registry;
+  register_builtin_drivers(registry);
+  auto channel = drivers::SimChannel::create(5);
+  register_sim_channel_driver(registry, channel);
+  core::SimulatedScheduler scheduler(core::Clock::time_point(seconds(1'700'000'000)));
+  v1::DriverConfig one, two;
+  one.set_modem_id(1);
+  two.set_modem_id(2);
+  two.mutable_sim()->mutable_position()->set_x(1500);
+  auto a = registry.create("sim", {one, scheduler});
+  auto b = registry.create("sim", {two, scheduler});
+  int received = 0;
+  link::DriverCallbacks on_b;
+  on_b.on_receive = [&](const v1::ModemTransmission&) { ++received; };
+  link::DriverCallbacks on_a;
+  on_a.on_data_request = [](v1::ModemTransmission* tx) { tx->add_frame(std::string("x")); };
+  a->start(on_a);
+  b->start(on_b);
+  EXPECT_EQ(channel->size(), 2u);
+  v1::ModemTransmission tx;
+  tx.set_src(1);
+  tx.set_dest(2);
+  a->initiate_transmission(tx);
+  scheduler.run_for(seconds(5));
+  EXPECT_EQ(received, 1);
+}
+
+}  // namespace
+}  // namespace acomms
