@@ -19,6 +19,7 @@
 
 #include "acomms/v1/acomms.grpc.pb.h"
 #include "child_process.h"
+#include "daemon_harness.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
 #include "store/migration.h"
@@ -86,25 +87,8 @@ class DaemonTest : public ::testing::Test {
                                           (dir_ / log_name).string(), env);
   }
 
-  // Polls the standard health service until SERVING.
   bool wait_serving(ChildProcess& daemon, std::chrono::milliseconds timeout = 20s) {
-    auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-      if (!daemon.running()) return false;
-      if (fs::exists(socket_)) {
-        auto channel = grpc::CreateChannel("unix:" + socket_, grpc::InsecureChannelCredentials());
-        auto health = grpc::health::v1::Health::NewStub(channel);
-        grpc::ClientContext context;
-        context.set_deadline(std::chrono::system_clock::now() + 1s);
-        grpc::health::v1::HealthCheckResponse response;
-        grpc::Status status = health->Check(&context, {}, &response);
-        if (status.ok() && response.status() == grpc::health::v1::HealthCheckResponse::SERVING) {
-          return true;
-        }
-      }
-      std::this_thread::sleep_for(50ms);
-    }
-    return false;
+    return testing::wait_serving(daemon, socket_, timeout);
   }
 
   std::string db_path() const { return (dir_ / "data" / "acommsd.db").string(); }
