@@ -16,6 +16,7 @@
 
 #include "acomms/v1/modem_transmission.pb.h"
 #include "child_process.h"
+#include "net_status_proto.h"
 #include "daemon_harness.h"
 #include "dccl/codec.h"
 
@@ -25,16 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-constexpr const char* kProto = R"(syntax = "proto2";
-import "dccl/option_extensions.proto";
-package net;
-message Status {
-  option (dccl.msg) = { codec_version: 4 id: 10 max_bytes: 32 };
-  required int32 src = 1 [(dccl.field) = { min: 0 max: 127 }];
-  required int32 dest = 2 [(dccl.field) = { min: 0 max: 127 }];
-  required int32 battery = 3 [(dccl.field) = { min: 0 max: 100 }];
-}
-)";
 
 int bound_udp_socket(int port) {
   int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
@@ -50,7 +41,7 @@ TEST(DriverRestart, QueuedMessagesGoOutOnceTheTransportIsBack) {
   fs::path dir = fs::path("/tmp") / ("acomms-restart-" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  std::ofstream(dir / "net.proto") << kProto;
+  std::ofstream(dir / "net.proto") << kNetStatusProto;
   const int listen_port = free_udp_port(), peer_port = free_udp_port();
   const std::string socket = (dir / "api.sock").string();
   std::ofstream(dir / "node.conf")

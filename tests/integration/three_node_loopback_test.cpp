@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "child_process.h"
+#include "net_status_proto.h"
 #include "daemon_harness.h"
 
 namespace acomms::testing {
@@ -23,16 +24,6 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-constexpr const char* kProto = R"(syntax = "proto2";
-import "dccl/option_extensions.proto";
-package net;
-message Status {
-  option (dccl.msg) = { codec_version: 4 id: 10 max_bytes: 32 };
-  required int32 src = 1 [(dccl.field) = { min: 0 max: 127 }];
-  required int32 dest = 2 [(dccl.field) = { min: 0 max: 127 }];
-  required int32 battery = 3 [(dccl.field) = { min: 0 max: 100 }];
-}
-)";
 
 // Sources of the net.Status messages this node's store says it received.
 std::set<int> received_from(const std::string& db_path) {
@@ -58,7 +49,7 @@ TEST(ThreeNodeLoopback, EveryStatusReachesTheOtherTwo) {
   fs::path dir = fs::path("/tmp") / ("acomms-3n-" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  std::ofstream(dir / "net.proto") << kProto;
+  std::ofstream(dir / "net.proto") << kNetStatusProto;
 
   const std::vector<int> ids = {1, 2, 3};
   std::map<int, int> port;

@@ -13,6 +13,7 @@
 #include <map>
 
 #include "core/scheduler.h"
+#include "net_status_proto.h"
 #include "link/link_controller.h"
 #include "mac/auto_discovery_mac.h"
 #include "mac/mac_factory.h"
@@ -27,16 +28,6 @@ namespace fs = std::filesystem;
 namespace pb = google::protobuf;
 using namespace std::chrono_literals;
 
-constexpr const char* kProto = R"(syntax = "proto2";
-import "dccl/option_extensions.proto";
-package net;
-message Status {
-  option (dccl.msg) = { codec_version: 4 id: 10 max_bytes: 32 };
-  required int32 src = 1 [(dccl.field) = { min: 0 max: 127 }];
-  required int32 dest = 2 [(dccl.field) = { min: 0 max: 127 }];
-  required int32 seq = 3 [(dccl.field) = { min: 0 max: 1000 }];
-}
-)";
 
 // 2025-06-01 10:00:00 UTC: an ordinary morning, far from midnight.
 constexpr int64_t kStart = 1'748'772'000;
@@ -72,10 +63,10 @@ struct Node {
     return ids;
   }
 
-  void submit(int32_t src, int32_t dest, int seq) {
+  void submit(int32_t src, int32_t dest, int battery) {
     auto m = codec.new_message("net.Status");
     pb::TextFormat::ParseFromString("src: " + std::to_string(src) + " dest: " + std::to_string(dest) +
-                                        " seq: " + std::to_string(seq),
+                                        " battery: " + std::to_string(battery),
                                     m.get());
     ASSERT_TRUE(queues->accept(queues->journal_new(*m)));
   }
@@ -93,7 +84,7 @@ struct Node {
 TEST(SimulatedNetwork, ThreeNodesDiscoverEachOtherThenExchangeMessagesWithAcks) {
   fs::path dir = fs::temp_directory_path() / ("acomms-net-" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  std::ofstream(dir / "net.proto") << kProto;
+  std::ofstream(dir / "net.proto") << testing::kNetStatusProto;
 
   core::SimulatedScheduler scheduler{core::Clock::time_point(std::chrono::seconds(kStart))};
   auto channel = drivers::SimChannel::create(/*seed=*/7);
@@ -139,10 +130,10 @@ TEST(SimulatedNetwork, ThreeNodesDiscoverEachOtherThenExchangeMessagesWithAcks) 
   }
 
   // Now traffic: each node sends a unicast message to each other node.
-  int seq = 0;
+  int battery = 0;
   for (auto& [src, node] : nodes) {
     for (const auto& [dest, other] : nodes) {
-      if (dest != src) node->submit(src, dest, ++seq);
+      if (dest != src) node->submit(src, dest, ++battery);
     }
   }
   scheduler.run_for(600s);
