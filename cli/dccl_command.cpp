@@ -6,6 +6,7 @@
 #include <google/protobuf/text_format.h>
 
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
@@ -71,16 +72,17 @@ std::string encode_line(const dccl::Codec& codec, const std::string& line) {
   return dccl::to_hex(codec.encode(*message));
 }
 
-int run_encode(const DcclOptions& options) {
-  dccl::Codec codec;
-  load(codec, options);
+// Reads stdin a line at a time (blank lines skipped) and prints what
+// `handle` makes of each, or "error: line N: ..." when it throws: one
+// answer per input line, in order. Returns the exit code: 1 if any failed.
+int for_each_input_line(const std::function<std::string(const std::string&)>& handle) {
   int failures = 0;
   std::string line;
   for (int number = 1; std::getline(std::cin, line); ++number) {
     line = trim(line);
     if (line.empty()) continue;
     try {
-      std::cout << encode_line(codec, line) << "\n";
+      std::cout << handle(line);
     } catch (const std::exception& e) {
       std::cout << "error: line " << number << ": " << e.what() << "\n";
       ++failures;
@@ -90,42 +92,37 @@ int run_encode(const DcclOptions& options) {
   return failures == 0 ? 0 : 1;
 }
 
+int run_encode(const DcclOptions& options) {
+  dccl::Codec codec;
+  load(codec, options);
+  return for_each_input_line([&](const std::string& line) { return encode_line(codec, line) + "\n"; });
+}
+
 int run_decode(const DcclOptions& options) {
   dccl::Codec codec;
   load(codec, options);
-  int failures = 0;
-  std::string line;
-  for (int number = 1; std::getline(std::cin, line); ++number) {
-    line = trim(line);
-    if (line.empty()) continue;
-    try {
-      std::string bytes = dccl::from_hex(line);
-      std::vector<std::unique_ptr<google::protobuf::Message>> messages;
-      if (options.type_name.empty()) {
-        messages = codec.decode(bytes);
-      } else {
-        // Named type (needed for omit_id types): messages of that one type
-        // back to back.
-        for (size_t offset = 0; offset < bytes.size();) {
-          size_t used = 0;
-          messages.push_back(codec.decode_as(options.type_name, std::string_view(bytes).substr(offset), &used));
-          if (used == 0) break;
-          offset += used;
-        }
+  return for_each_input_line([&](const std::string& line) {
+    std::string bytes = dccl::from_hex(line);
+    std::vector<std::unique_ptr<google::protobuf::Message>> messages;
+    if (options.type_name.empty()) {
+      messages = codec.decode(bytes);
+    } else {
+      // Named type (needed for omit_id types): messages of that one type
+      // back to back.
+      for (size_t offset = 0; offset < bytes.size();) {
+        size_t used = 0;
+        messages.push_back(codec.decode_as(options.type_name, std::string_view(bytes).substr(offset), &used));
+        if (used == 0) break;
+        offset += used;
       }
-      std::string out;
-      for (const auto& message : messages) {
-        std::string text = message->ShortDebugString();
-        out += "|" + message->GetDescriptor()->full_name() + "|" + (text.empty() ? "" : " " + text) + "\n";
-      }
-      std::cout << out;
-    } catch (const std::exception& e) {
-      std::cout << "error: line " << number << ": " << e.what() << "\n";
-      ++failures;
     }
-  }
-  std::cout.flush();
-  return failures == 0 ? 0 : 1;
+    std::string out;
+    for (const auto& message : messages) {
+      std::string text = message->ShortDebugString();
+      out += "|" + message->GetDescriptor()->full_name() + "|" + (text.empty() ? "" : " " + text) + "\n";
+    }
+    return out;
+  });
 }
 
 std::string bits_text(const dccl::SizeBits& bits) {

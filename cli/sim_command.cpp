@@ -53,17 +53,25 @@ void add_queue_market_command(CLI::App* sim) {
 }
 
 
+// "a,b,,c" -> "a", "b", "", "c" (an empty token is the caller's to refuse).
+std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> tokens;
+  size_t begin = 0;
+  while (begin <= text.size()) {
+    size_t end = text.find(',', begin);
+    if (end == std::string::npos) end = text.size();
+    tokens.push_back(text.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  return tokens;
+}
+
 // "3-6,8" -> 3,4,5,6,8. "n+1" (when allowed) -> 0, standing for the network
 // size + 1.
 std::vector<int64_t> parse_int_list(const std::string& text, const std::string& option,
                                     bool allow_size_plus_one) {
   std::vector<int64_t> values;
-  size_t begin = 0;
-  while (begin <= text.size()) {
-    size_t end = text.find(',', begin);
-    if (end == std::string::npos) end = text.size();
-    const std::string token = text.substr(begin, end - begin);
-    begin = end + 1;
+  for (const std::string& token : split_commas(text)) {
     if (allow_size_plus_one && token == "n+1") {
       values.push_back(0);
       continue;
@@ -90,12 +98,7 @@ std::vector<int64_t> parse_int_list(const std::string& text, const std::string& 
 
 std::vector<double> parse_double_list(const std::string& text, const std::string& option) {
   std::vector<double> values;
-  size_t begin = 0;
-  while (begin <= text.size()) {
-    size_t end = text.find(',', begin);
-    if (end == std::string::npos) end = text.size();
-    const std::string token = text.substr(begin, end - begin);
-    begin = end + 1;
+  for (const std::string& token : split_commas(text)) {
     try {
       size_t used = 0;
       values.push_back(std::stod(token, &used));
