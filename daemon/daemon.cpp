@@ -3,20 +3,27 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <filesystem>
 
 #include "core/systemd_notify.h"
 #include "mac/mac_factory.h"
 #include "register_drivers.h"
 #include "message_definitions.h"
+#include "service/received_message.h"
 
 namespace acomms {
 
 Daemon::Daemon(const v1::Config& config) : config_(config) {
   store_ = std::make_unique<store::Store>(config_.data_dir());
+  std::vector<service::RecordedDefinition> api_definitions =
+      service::DefinitionLoader::read_recorded(store_->db());
   // From here on only the writer's thread touches the store's connection.
   writer_ = std::make_unique<store::GroupCommitWriter>(store_->db());
   journal_ = std::make_unique<queue::SqliteJournal>(*writer_);
+  events_ = std::make_unique<queue::EventLogReader>(store_->db().path());
   codec_ = make_codec(config_.dccl());
+  // Before the queues restore: messages of these types are in the journal.
+  service::DefinitionLoader::load_recorded(*codec_, api_definitions);
   try {
     queues_ = std::make_unique<queue::QueueManager>(*codec_, config_.queue(),
                                                     static_cast<int32_t>(config_.driver().modem_id()),
@@ -25,6 +32,8 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
     throw std::runtime_error(std::string("queue config: ") + e.what());
   }
   queues_->restore();
+  definitions_ = std::make_unique<service::DefinitionLoader>(
+      *codec_, *queues_, *writer_, (std::filesystem::path(config_.data_dir()) / "definitions").string());
   core_ = std::make_unique<core::EventLoop>();
   expiry_timer_ = std::make_unique<asio::steady_timer>(core_->context());
   build_link();
@@ -41,8 +50,9 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
   facts.driver = config_.driver().name();
   facts.mac = config_.mac().name();
   facts.modem_id = config_.driver().modem_id();
-  facts.dccl_types = static_cast<int32_t>(codec_->types().size());
-  api_ = std::make_unique<service::AcommsService>(std::move(facts), *codec_, *queues_, *core_);
+  api_ = std::make_unique<service::AcommsService>(
+      std::move(facts), service::ServiceParts{*codec_, *queues_, *core_, {*mac_, *driver_, *link_}, *definitions_,
+                                              *events_, subscribers_});
 
   server_ = std::make_unique<service::GrpcServer>(
       service::Endpoints{config_.grpc().unix_socket(), config_.grpc().tcp_listen()},
@@ -91,8 +101,9 @@ void Daemon::build_link() {
     throw std::runtime_error(std::string("mac config: ") + e.what());
   }
   link_ = std::make_unique<link::LinkController>(
-      own_id, *queues_, *mac_, *driver_, [](queue::ReceivedMessage message, const v1::ModemTransmission& from) {
-        spdlog::info("received {} from {} (transmission from {})", message.type, message.src, from.src());
+      own_id, *queues_, *mac_, *driver_, [this](queue::ReceivedMessage message, const v1::ModemTransmission& from) {
+        spdlog::debug("received {} from {} (transmission from {})", message.type, message.src, from.src());
+        subscribers_.publish(service::to_received_message(message, from));
       });
 }
 
@@ -109,6 +120,8 @@ void Daemon::schedule_expiry() {
 void Daemon::stop() {
   if (!server_ && !core_ && !store_) return;
   core::systemd_notify("STOPPING=1");
+  // Subscribe streams would otherwise hold the server's shutdown up.
+  subscribers_.close();
   if (server_) server_->shutdown(std::chrono::seconds(2));
   server_.reset();
   if (core_ && link_) core_->call([this] { link_->stop(); });
@@ -119,12 +132,14 @@ void Daemon::stop() {
   scheduler_.reset();
   expiry_timer_.reset();
   core_.reset();
+  definitions_.reset();
   queues_.reset();
   // Every event recorded so far reaches the disk before the store closes.
   if (writer_) writer_->stop();
   journal_.reset();
   writer_.reset();
   codec_.reset();
+  events_.reset();
   store_.reset();
   spdlog::info("acommsd stopped");
 }

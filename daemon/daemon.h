@@ -18,10 +18,13 @@
 #include "mac/mac.h"
 #include "dccl/codec.h"
 #include "queue/queue_manager.h"
+#include "queue/event_log_reader.h"
 #include "queue/sqlite_journal.h"
 #include "store/group_commit_writer.h"
 #include "service/grpc_server.h"
 #include "service/acomms_service.h"
+#include "service/definition_loader.h"
+#include "service/subscriber_hub.h"
 #include "store/store.h"
 
 namespace acomms {
@@ -47,9 +50,12 @@ class Daemon {
   std::unique_ptr<store::Store> store_;
   std::unique_ptr<store::GroupCommitWriter> writer_;
   std::unique_ptr<queue::SqliteJournal> journal_;
+  std::unique_ptr<queue::EventLogReader> events_;
   std::unique_ptr<dccl::Codec> codec_;
   // Owned by the core thread once it runs.
   std::unique_ptr<queue::QueueManager> queues_;
+  std::unique_ptr<service::DefinitionLoader> definitions_;
+  service::SubscriberHub subscribers_;
   std::unique_ptr<core::EventLoop> core_;
   std::unique_ptr<asio::steady_timer> expiry_timer_;
   // The link, on the core thread: driver (supervised), MAC, and the glue.

@@ -198,6 +198,8 @@ void Codec::add_include_dir(const std::string& dir) {
   impl_->tree.MapPath("", dir);
 }
 
+const std::vector<std::string>& Codec::include_dirs() const { return impl_->include_dirs; }
+
 std::vector<const TypeInfo*> Codec::load(const std::string& proto_file,
                                          const std::vector<std::string>& include_dirs) {
   Impl& im = *impl_;

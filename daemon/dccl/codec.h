@@ -43,8 +43,9 @@ namespace acomms::dccl {
 
 class Codec {
  public:
-  // Include directories start with ACOMMS_PROTO_DIR when the library was
-  // built with it (where dccl/option_extensions.proto lives).
+  // Include directories start with where dccl/option_extensions.proto lives:
+  // ../share/acommsd/proto beside the executable when installed there, then
+  // ACOMMS_PROTO_DIR when the library was built with it.
   Codec();
   ~Codec();
   Codec(const Codec&) = delete;
@@ -55,6 +56,8 @@ class Codec {
 
   // Adds a directory that imports are resolved against.
   void add_include_dir(const std::string& dir);
+  // Those directories, in search order.
+  const std::vector<std::string>& include_dirs() const;
 
   // Loads every message with a (dccl.msg) option in proto_file (a disk path,
   // or a path relative to an include directory) and returns their infos.

@@ -1,9 +1,12 @@
 #include "queue/queue_manager.h"
 
+#include <cmath>
+
 #include <google/protobuf/descriptor.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <set>
 
@@ -24,13 +27,18 @@ const v1::QueueTypeConfig* type_config(const v1::QueueConfig& config, const std:
 QueueManager::QueueManager(const dccl::Codec& codec, const v1::QueueConfig& config, int32_t own_id,
                            const core::Clock& clock, MessageJournal& journal)
     : codec_(codec),
+      config_(config),
       own_id_(own_id),
       promiscuous_(config.promiscuous()),
       clock_(clock),
       journal_(journal),
       // Frame ids only need to be unique; starting from the clock keeps them
       // unique across restarts too, so the event log never reuses one.
-      next_frame_id_(static_cast<uint64_t>(clock.now_seconds() * 1e6)) {
+      next_frame_id_(static_cast<uint64_t>(clock.now_seconds() * 1e6)),
+      duplicate_filter_(config.has_duplicate_window_s() ? config.duplicate_window_s() : 300) {
+  if (!(config.duplicate_window_s() >= 0) || !std::isfinite(config.duplicate_window_s())) {
+    throw std::invalid_argument("queue.duplicate_window_s must be 0 (off) or a positive number of seconds");
+  }
   std::set<std::string> configured;
   for (const auto& entry : config.type()) {
     if (!configured.insert(entry.type()).second) {
@@ -40,18 +48,26 @@ QueueManager::QueueManager(const dccl::Codec& codec, const v1::QueueConfig& conf
       throw std::invalid_argument("queue " + entry.type() + " is configured but no such DCCL type is loaded");
     }
   }
-  double now = clock.now_seconds();
-  for (const dccl::TypeInfo* info : codec.types()) {
+  add_types();
+}
+
+std::vector<std::string> QueueManager::add_types() {
+  double now = clock_.now_seconds();
+  std::vector<std::string> added;
+  for (const dccl::TypeInfo* info : codec_.types()) {
     if (info->omit_id) continue;  // without an id, a frame cannot say what it carries
-    const v1::QueueTypeConfig* entry = type_config(config, info->name);
+    if (by_name_.count(info->name) > 0) continue;
+    const v1::QueueTypeConfig* entry = type_config(config_, info->name);
     TypeState state;
-    QueuePolicy policy = resolve_policy(entry ? entry->policy() : v1::QueuePolicy(), config.defaults(),
+    QueuePolicy policy = resolve_policy(entry ? entry->policy() : v1::QueuePolicy(), config_.defaults(),
                                         "queue " + info->name);
     state.queue = std::make_unique<Queue>(info->name, info->id, policy, now);
     state.roles = MessageRoles(info->descriptor, entry ? entry->roles() : v1::QueueRoles());
     auto [it, inserted] = by_id_.emplace(info->id, std::move(state));
     by_name_[info->name] = &it->second;
+    added.push_back(info->name);
   }
+  return added;
 }
 
 void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMessage& record, double now,
@@ -324,6 +340,12 @@ std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32
         spdlog::debug("queue {}: received message for node {}, not for us", info->name, received.dest);
         continue;
       }
+      received.encoded.assign(rest.substr(0, used));
+      if (duplicate_filter_.seen(received.src, received.encoded, now)) {
+        ++duplicates_;
+        spdlog::info("queue {}: retransmission from {} not passed on again", info->name, received.src);
+        continue;
+      }
       JournalMessage as_event;
       as_event.src = received.src;
       as_event.dest = received.dest;
@@ -339,6 +361,21 @@ std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32
     }
   }
   return out;
+}
+
+size_t QueueManager::flush(const std::string& type, const std::string& reason) {
+  auto it = by_name_.find(type);
+  if (it == by_name_.end()) throw UnknownTypeError("no queue for type " + type);
+  TypeState& state = *it->second;
+  std::vector<int64_t> ids;
+  for (const QueuedMessage& message : state.queue->messages()) ids.push_back(message.record.id);
+  double now = clock_.now_seconds();
+  for (int64_t id : ids) {
+    if (std::optional<QueuedMessage> taken = state.queue->take(id)) {
+      emit(QueueEventKind::kDropped, state, taken->record, now, 0, reason.c_str(), true);
+    }
+  }
+  return ids.size();
 }
 
 const Queue* QueueManager::find_queue(const std::string& type) const {

@@ -26,6 +26,7 @@
 #include "acomms/v1/config.pb.h"
 #include "core/clock.h"
 #include "dccl/codec.h"
+#include "queue/duplicate_filter.h"
 #include "queue/frame.h"
 #include "queue/message_journal.h"
 #include "queue/queue.h"
@@ -38,6 +39,7 @@ namespace acomms::queue {
 struct ReceivedMessage {
   std::string type;
   std::unique_ptr<google::protobuf::Message> message;
+  std::string encoded;  // its DCCL bytes, as received
   int32_t src = -1;   // from the source role, else the transmission's source
   int32_t dest = 0;
   double time = 0;    // when it was received
@@ -57,6 +59,11 @@ class QueueManager {
   // outlive the manager.
   QueueManager(const dccl::Codec& codec, const v1::QueueConfig& config, int32_t own_id,
                const core::Clock& clock, MessageJournal& journal);
+
+  // Makes a queue for every loaded type that has none yet (after the codec
+  // loaded more definitions). Returns their names. Must not run
+  // concurrently with journal_new (the caller holds a lock for that).
+  std::vector<std::string> add_types();
 
   // Start-up: brings back what the journal holds (after a crash, messages
   // that were in flight come back eligible). A stored message whose type is
@@ -93,10 +100,16 @@ class QueueManager {
   // Removes a queued message (Cancel). False if there is no such message.
   bool cancel(int64_t id, const std::string& reason);
 
+  // Removes every message of `type` (Flush), each with a dropped event
+  // giving `reason`. Returns how many. Throws UnknownTypeError.
+  size_t flush(const std::string& type, const std::string& reason);
+
   const Queue* find_queue(const std::string& type) const;
   std::vector<const Queue*> queues() const;
   const QueueStats& stats(const std::string& type) const;
   uint64_t malformed_frames() const { return malformed_frames_; }
+  // Received messages recognised as retransmissions and not passed on.
+  uint64_t duplicates() const { return duplicates_; }
 
  private:
   struct TypeState {
@@ -112,6 +125,7 @@ class QueueManager {
             uint64_t frame_id, const char* detail, bool removes);
 
   const dccl::Codec& codec_;
+  v1::QueueConfig config_;
   int32_t own_id_;
   bool promiscuous_;
   const core::Clock& clock_;
@@ -123,6 +137,8 @@ class QueueManager {
   std::unordered_map<uint64_t, std::vector<TypeState*>> in_flight_;
   uint64_t next_frame_id_;
   uint64_t malformed_frames_ = 0;
+  DuplicateFilter duplicate_filter_;
+  uint64_t duplicates_ = 0;
 };
 
 }  // namespace acomms::queue

@@ -16,8 +16,10 @@ class Statement;
 
 class Database {
  public:
-  // Opens (creating if missing) the database file. Throws StoreError.
-  explicit Database(const std::string& path);
+  enum class Mode { kReadWrite, kReadOnly };
+  // Opens the database file: read-write (creating it if missing), or
+  // read-only (it must exist). Throws StoreError.
+  explicit Database(const std::string& path, Mode mode = Mode::kReadWrite);
   ~Database();
   Database(const Database&) = delete;
   Database& operator=(const Database&) = delete;

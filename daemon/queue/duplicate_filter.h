@@ -1,0 +1,45 @@
+#pragma once
+// Recognises retransmissions on the receive side.
+//
+// A sender that does not hear the ACK for a frame (the ACK was lost, or
+// the sender restarted before it arrived) sends the same messages again,
+// and DCCL carries no sequence number to tell. So a message whose source
+// and encoded bytes equal one received within the last `window_s` seconds
+// is taken as a retransmission and not delivered again. Messages that are
+// meant to repeat identical content within the window must differ in some
+// field (most carry a time), or the window must be shortened (0 turns the
+// filter off).
+
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <string_view>
+#include <unordered_set>
+
+namespace acomms::queue {
+
+class DuplicateFilter {
+ public:
+  // Remembers at most `capacity` messages (oldest forgotten first), so a
+  // flood cannot grow memory without bound.
+  explicit DuplicateFilter(double window_s, size_t capacity = 4096)
+      : window_s_(window_s), capacity_(capacity) {}
+
+  // True if (src, encoded) was seen within the window; otherwise remembers
+  // it and returns false.
+  bool seen(int32_t src, std::string_view encoded, double now);
+
+ private:
+  struct Entry {
+    double time;
+    std::string key;
+  };
+  void forget_before(double cutoff);
+
+  double window_s_;
+  size_t capacity_;
+  std::deque<Entry> order_;  // by arrival time
+  std::unordered_set<std::string> keys_;
+};
+
+}  // namespace acomms::queue

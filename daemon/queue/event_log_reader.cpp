@@ -1,0 +1,80 @@
+#include "queue/event_log_reader.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace acomms::queue {
+namespace {
+
+constexpr QueueEventKind kAllKinds[] = {QueueEventKind::kQueued,  QueueEventKind::kSent,
+                                        QueueEventKind::kAcked,   QueueEventKind::kExpired,
+                                        QueueEventKind::kDropped, QueueEventKind::kRetry,
+                                        QueueEventKind::kReceived};
+
+// "?, ?, ?" for an IN list of n values.
+std::string placeholders(size_t n) {
+  std::string out;
+  for (size_t i = 0; i < n; ++i) out += i ? ", ?" : "?";
+  return out;
+}
+
+}  // namespace
+
+QueueEventKind event_kind_from_string(const std::string& kind) {
+  std::string known;
+  for (QueueEventKind k : kAllKinds) {
+    if (to_string(k) == kind) return k;
+    known += (known.empty() ? "" : ", ") + std::string(to_string(k));
+  }
+  throw std::invalid_argument("unknown event kind \"" + kind + "\" (kinds: " + known + ")");
+}
+
+EventLogReader::EventLogReader(const std::string& store_path)
+    : db_(store_path, store::Database::Mode::kReadOnly) {}
+
+EventPage EventLogReader::query(const EventQuery& query) {
+  for (const std::string& kind : query.kinds) (void)event_kind_from_string(kind);
+  std::string sql =
+      "SELECT id, time, kind, type, message_id, frame_id, src, dest, detail FROM event_log WHERE 1";
+  if (query.since > 0) sql += " AND time >= ?";
+  if (query.until > 0) sql += " AND time <= ?";
+  if (!query.kinds.empty()) sql += " AND kind IN (" + placeholders(query.kinds.size()) + ")";
+  if (!query.types.empty()) sql += " AND type IN (" + placeholders(query.types.size()) + ")";
+  if (query.message_id != 0) sql += " AND message_id = ?";
+  // Newest first so LIMIT keeps the most recent; reversed below.
+  sql += " ORDER BY time DESC, id DESC LIMIT ?";
+
+  std::lock_guard lock(mutex_);
+  store::Statement statement = db_.prepare(sql);
+  int index = 1;
+  if (query.since > 0) statement.bind_double(index++, query.since);
+  if (query.until > 0) statement.bind_double(index++, query.until);
+  for (const std::string& kind : query.kinds) statement.bind(index++, std::string_view(kind));
+  for (const std::string& type : query.types) statement.bind(index++, std::string_view(type));
+  if (query.message_id != 0) statement.bind(index++, query.message_id);
+  statement.bind(index++, static_cast<int64_t>(query.limit + 1));
+
+  EventPage page;
+  while (statement.step()) {
+    if (page.events.size() == query.limit) {
+      page.truncated = true;
+      break;
+    }
+    LoggedEvent logged;
+    logged.id = statement.column_int64(0);
+    QueueEvent& e = logged.event;
+    e.time = statement.column_double(1);
+    e.kind = event_kind_from_string(statement.column_text(2));
+    e.type = statement.column_text(3);
+    e.message_id = statement.is_null(4) ? 0 : statement.column_int64(4);
+    e.frame_id = statement.is_null(5) ? 0 : static_cast<uint64_t>(statement.column_int64(5));
+    e.src = statement.is_null(6) ? -1 : static_cast<int32_t>(statement.column_int64(6));
+    e.dest = statement.is_null(7) ? -1 : static_cast<int32_t>(statement.column_int64(7));
+    e.detail = statement.column_text(8);
+    page.events.push_back(std::move(logged));
+  }
+  std::reverse(page.events.begin(), page.events.end());
+  return page;
+}
+
+}  // namespace acomms::queue

@@ -1,0 +1,60 @@
+// Events: the event log, what happened to messages.
+#include <cmath>
+
+#include "service/acomms_service.h"
+
+namespace acomms::service {
+namespace {
+
+constexpr uint32_t kDefaultLimit = 1000;
+constexpr uint32_t kMaxLimit = 10000;
+
+}  // namespace
+
+grpc::Status AcommsService::Events(grpc::ServerContext*, const v1::EventsRequest* request,
+                                   v1::EventsResponse* response) {
+  using grpc::StatusCode;
+  if (request->limit() > kMaxLimit) return {StatusCode::INVALID_ARGUMENT, "limit is at most " + std::to_string(kMaxLimit)};
+  if (!std::isfinite(request->since()) || !std::isfinite(request->until()) || request->since() < 0 ||
+      request->until() < 0) {
+    return {StatusCode::INVALID_ARGUMENT, "since and until are seconds since the Unix epoch (0: unbounded)"};
+  }
+  if (request->until() > 0 && request->since() > request->until()) {
+    return {StatusCode::INVALID_ARGUMENT, "since is after until"};
+  }
+  if (request->kinds_size() + request->types_size() > 1000) {
+    return {StatusCode::INVALID_ARGUMENT, "at most 1000 kinds and types in all"};
+  }
+  queue::EventQuery query;
+  query.since = request->since();
+  query.until = request->until();
+  query.kinds.assign(request->kinds().begin(), request->kinds().end());
+  query.types.assign(request->types().begin(), request->types().end());
+  query.message_id = request->message_id();
+  query.limit = request->limit() ? request->limit() : kDefaultLimit;
+  queue::EventPage page;
+  try {
+    page = parts_.events.query(query);
+  } catch (const std::invalid_argument& e) {
+    return {StatusCode::INVALID_ARGUMENT, e.what()};
+  } catch (const std::exception& e) {
+    return {StatusCode::UNAVAILABLE, std::string("event log: ") + e.what()};
+  }
+  for (const queue::LoggedEvent& logged : page.events) {
+    const queue::QueueEvent& e = logged.event;
+    v1::Event* out = response->add_events();
+    out->set_id(logged.id);
+    out->set_time(e.time);
+    out->set_kind(std::string(queue::to_string(e.kind)));
+    out->set_type(e.type);
+    out->set_message_id(e.message_id);
+    out->set_frame_id(e.frame_id);
+    out->set_src(e.src);
+    out->set_dest(e.dest);
+    out->set_detail(e.detail);
+  }
+  response->set_truncated(page.truncated);
+  return grpc::Status::OK;
+}
+
+}  // namespace acomms::service

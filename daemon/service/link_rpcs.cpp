@@ -1,0 +1,89 @@
+// LinkStatus and SetCycle: the driver and the MAC.
+#include "mac/auto_discovery_mac.h"
+#include "mac/mac_factory.h"
+#include "service/acomms_service.h"
+
+namespace acomms::service {
+namespace {
+
+v1::MacSlot to_proto(const mac::Slot& slot) {
+  v1::MacSlot out;
+  out.set_src(slot.src);
+  if (slot.dest >= 0) out.set_dest(slot.dest);
+  out.set_rate(slot.rate);
+  out.set_seconds(slot.seconds);
+  return out;
+}
+
+}  // namespace
+
+grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatusRequest*,
+                                       v1::LinkStatusResponse* response) {
+  response->set_modem_id(facts_.modem_id);
+  response->set_mac(facts_.mac.empty() ? "none" : facts_.mac);
+  parts_.core.call([&] {
+    const link::DriverStatus& status = parts_.link.driver.status();
+    v1::DriverStatus* driver = response->mutable_driver();
+    driver->set_name(facts_.driver);
+    driver->set_state(link::to_string(status.state));
+    driver->set_summary(link::describe(status, std::chrono::system_clock::now()));
+    driver->set_last_error(status.last_error);
+    driver->set_failures(status.failures);
+    driver->set_starts(status.starts);
+
+    const mac::Cycle& cycle = parts_.link.mac.cycle();
+    std::set<int32_t> known;
+    for (const mac::Slot& slot : cycle) {
+      *response->add_cycle() = to_proto(slot);
+      if (slot.src > 0) known.insert(slot.src);
+    }
+    response->set_cycle_seconds(cycle.empty() ? 0 : mac::cycle_seconds(cycle));
+    if (auto* discovery = dynamic_cast<const mac::AutoDiscoveryMac*>(&parts_.link.mac)) {
+      known.clear();
+      for (int32_t id : discovery->known_ids()) known.insert(id);
+    }
+    for (int32_t id : known) response->add_known_nodes(id);
+
+    const link::LinkStats& stats = parts_.link.controller.stats();
+    v1::LinkCounters* counters = response->mutable_counters();
+    counters->set_transmissions_sent(stats.transmissions_sent);
+    counters->set_transmissions_failed(stats.transmissions_failed);
+    counters->set_data_received(stats.data_received);
+    counters->set_acks_received(stats.acks_received);
+    counters->set_messages_delivered(stats.messages_delivered);
+    counters->set_duplicates_dropped(parts_.queues.duplicates());
+    counters->set_malformed_frames(parts_.queues.malformed_frames());
+  });
+  return grpc::Status::OK;
+}
+
+grpc::Status AcommsService::SetCycle(grpc::ServerContext*, const v1::SetCycleRequest* request,
+                                     v1::SetCycleResponse* response) {
+  const std::string& name = facts_.mac;
+  if (name.empty() || name == "none") {
+    return {grpc::StatusCode::FAILED_PRECONDITION,
+            "this node's MAC is \"none\": it never starts a transmission, so it has no cycle to change "
+            "(configure mac.name \"fixed\" or \"polled\")"};
+  }
+  if (name == "auto_discovery") {
+    return {grpc::StatusCode::FAILED_PRECONDITION,
+            "the \"auto_discovery\" MAC builds its cycle from the nodes it hears; it cannot be set"};
+  }
+  if (request->slot_size() > 1000) {
+    return {grpc::StatusCode::INVALID_ARGUMENT, "a cycle has at most 1000 slots"};
+  }
+  v1::MacConfig config;
+  config.set_name(name);
+  *config.mutable_slot() = request->slot();
+  mac::Cycle cycle = mac::cycle_from_config(config);
+  try {
+    mac::check_cycle(cycle, "slot");
+    parts_.core.call([&] { parts_.link.mac.set_cycle(cycle); });
+  } catch (const std::invalid_argument& e) {
+    return {grpc::StatusCode::INVALID_ARGUMENT, e.what()};
+  }
+  response->set_cycle_seconds(mac::cycle_seconds(cycle));
+  return grpc::Status::OK;
+}
+
+}  // namespace acomms::service

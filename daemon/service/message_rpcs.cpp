@@ -1,0 +1,145 @@
+// Submit, Encode and Decode: the calls that take a message from a client.
+#include <google/protobuf/util/json_util.h>
+
+#include <cmath>
+
+#include "service/acomms_service.h"
+#include "service/message_json.h"
+
+namespace acomms::service {
+namespace {
+
+// The most a submitted message may be: far above any DCCL message (whose
+// max_bytes is small), low enough that a runaway client cannot make the
+// daemon parse megabytes.
+constexpr size_t kMaxMessageBytes = 64 * 1024;
+
+}  // namespace
+
+grpc::Status AcommsService::parse_message(const std::string& type, const std::string* payload,
+                                          const std::string* json,
+                                          std::unique_ptr<google::protobuf::Message>* out) const {
+  using grpc::StatusCode;
+  if (parts_.codec.find_type(type) == nullptr) {
+    return {StatusCode::NOT_FOUND, "no DCCL type \"" + type + "\" is loaded"};
+  }
+  if ((payload && payload->size() > kMaxMessageBytes) || (json && json->size() > kMaxMessageBytes)) {
+    return {StatusCode::INVALID_ARGUMENT, "message is larger than " + std::to_string(kMaxMessageBytes) + " bytes"};
+  }
+  std::unique_ptr<google::protobuf::Message> message = parts_.codec.new_message(type);
+  if (payload) {
+    if (!message->ParsePartialFromString(*payload)) {
+      return {StatusCode::INVALID_ARGUMENT, "payload is not a serialized " + type};
+    }
+  } else if (json) {
+    google::protobuf::util::Status parsed = google::protobuf::util::JsonStringToMessage(*json, message.get());
+    if (!parsed.ok()) {
+      std::string why(parsed.message());
+      if (why.rfind(": ", 0) == 0) why.erase(0, 2);  // the parser leaves an empty path in front
+      return {StatusCode::INVALID_ARGUMENT, "json: " + why};
+    }
+  } else {
+    return {StatusCode::INVALID_ARGUMENT, "give the message as payload (protobuf) or json"};
+  }
+  if (!message->IsInitialized()) {
+    return {StatusCode::INVALID_ARGUMENT,
+            type + ": required field(s) missing: " + message->InitializationErrorString()};
+  }
+  *out = std::move(message);
+  return grpc::Status::OK;
+}
+
+grpc::Status AcommsService::Submit(grpc::ServerContext*, const v1::SubmitRequest* request,
+                                   v1::SubmitResponse* response) {
+  using grpc::StatusCode;
+  if (!(request->ttl_s() >= 0) || !std::isfinite(request->ttl_s())) {
+    return {StatusCode::INVALID_ARGUMENT, "ttl_s must be 0 (the queue's) or a positive number of seconds"};
+  }
+  std::shared_lock lock(definitions_);
+  std::unique_ptr<google::protobuf::Message> message;
+  grpc::Status parsed = parse_message(
+      request->type(), request->message_case() == v1::SubmitRequest::kPayload ? &request->payload() : nullptr,
+      request->message_case() == v1::SubmitRequest::kJson ? &request->json() : nullptr, &message);
+  if (!parsed.ok()) return parsed;
+  queue::QueuedMessage queued;
+  try {
+    // Encoding and the durable write happen here, on this gRPC thread, so
+    // concurrent submits share commits and the core thread never waits on
+    // the disk.
+    queued = parts_.queues.journal_new(*message, request->ttl_s());
+  } catch (const queue::UnknownTypeError& e) {
+    return {StatusCode::NOT_FOUND, e.what()};
+  } catch (const dccl::Error& e) {
+    return {StatusCode::INVALID_ARGUMENT, e.what()};
+  } catch (const std::exception& e) {
+    return {StatusCode::UNAVAILABLE, std::string("store: ") + e.what()};
+  }
+  int64_t id = queued.record.id;
+  const std::string type = queued.record.type;
+  std::optional<uint32_t> refused_at;
+  try {
+    refused_at = parts_.core.call([&]() -> std::optional<uint32_t> {
+      if (parts_.queues.accept(std::move(queued))) return std::nullopt;
+      const queue::Queue* queue = parts_.queues.find_queue(type);
+      return queue ? queue->policy().max_queue : 0;
+    });
+  } catch (const std::exception& e) {
+    // The core stopped under us: the message is journaled and comes back
+    // at the next start.
+    return {StatusCode::UNAVAILABLE, std::string("acommsd is stopping: ") + e.what()};
+  }
+  if (refused_at) {
+    return {StatusCode::RESOURCE_EXHAUSTED,
+            "queue " + type + " is full (max_queue " + std::to_string(*refused_at) + ") and refuses new messages"};
+  }
+  response->set_message_id(id);
+  return grpc::Status::OK;
+}
+
+grpc::Status AcommsService::Encode(grpc::ServerContext*, const v1::EncodeRequest* request,
+                                   v1::EncodeResponse* response) {
+  std::shared_lock lock(definitions_);
+  std::unique_ptr<google::protobuf::Message> message;
+  grpc::Status parsed = parse_message(
+      request->type(), request->message_case() == v1::EncodeRequest::kPayload ? &request->payload() : nullptr,
+      request->message_case() == v1::EncodeRequest::kJson ? &request->json() : nullptr, &message);
+  if (!parsed.ok()) return parsed;
+  try {
+    response->set_encoded(parts_.codec.encode(*message));
+  } catch (const dccl::Error& e) {
+    return {grpc::StatusCode::INVALID_ARGUMENT, e.what()};
+  }
+  return grpc::Status::OK;
+}
+
+grpc::Status AcommsService::Decode(grpc::ServerContext*, const v1::DecodeRequest* request,
+                                   v1::DecodeResponse* response) {
+  if (request->encoded().size() > kMaxMessageBytes) {
+    return {grpc::StatusCode::INVALID_ARGUMENT,
+            "encoded is larger than " + std::to_string(kMaxMessageBytes) + " bytes"};
+  }
+  if (request->encoded().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "encoded is empty"};
+  std::shared_lock lock(definitions_);
+  try {
+    std::vector<std::unique_ptr<google::protobuf::Message>> messages;
+    if (request->type().empty()) {
+      messages = parts_.codec.decode(request->encoded());
+    } else {
+      if (parts_.codec.find_type(request->type()) == nullptr) {
+        return {grpc::StatusCode::NOT_FOUND, "no DCCL type \"" + request->type() + "\" is loaded"};
+      }
+      messages.push_back(parts_.codec.decode_as(request->type(), request->encoded()));
+    }
+    for (const auto& message : messages) {
+      v1::DecodedMessage* out = response->add_messages();
+      out->set_type(message->GetDescriptor()->full_name());
+      out->set_payload(message->SerializePartialAsString());
+      out->set_json(to_json(*message));
+    }
+  } catch (const dccl::Error& e) {
+    return {grpc::StatusCode::INVALID_ARGUMENT, e.what()};
+  }
+  return grpc::Status::OK;
+}
+
+}  // namespace acomms::service
