@@ -153,6 +153,9 @@ QueuedMessage QueueManager::journal_new(const pb::Message& message, double ttl_s
   std::unique_ptr<pb::Message> filled = codec_.new_message(type);
   filled->CopyFrom(message);
   state.roles.fill_unset(filled.get(), own_id_, now);
+  if (!filled->IsInitialized()) {
+    throw dccl::encode_error(type + ": required field(s) missing: " + filled->InitializationErrorString());
+  }
 
   QueuedMessage queued;
   queued.encoded = codec_.encode(*filled);  // throws dccl::Error in strict mode

@@ -72,7 +72,8 @@ class QueueManager {
 
   // Any thread. Fills unset source/timestamp roles, encodes (strict mode
   // per the codec) and journals the message durably. Throws
-  // UnknownTypeError, or dccl::Error naming the field and bound.
+  // UnknownTypeError, or dccl::Error naming the field and bound (or the
+  // required fields still missing once the roles are filled).
   QueuedMessage journal_new(const google::protobuf::Message& message, double ttl_s = 0) const;
 
   // Puts a journaled message in its queue. Returns false when the queue is

@@ -19,6 +19,7 @@
 #include "queue/event_log_reader.h"
 #include "queue/queue_manager.h"
 #include "service/definition_loader.h"
+#include "service/message_json.h"
 #include "service/subscriber_hub.h"
 
 namespace acomms::service {
@@ -92,6 +93,7 @@ class AcommsService final : public v1::Acomms::Service {
   // types up holds it shared. (The core thread's own codec use is safe
   // because LoadDefinitions runs the load on the core thread.)
   mutable std::shared_mutex definitions_;
+  mutable JsonReader json_reader_;
 };
 
 }  // namespace acomms::service

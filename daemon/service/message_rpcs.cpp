@@ -1,6 +1,4 @@
 // Submit, Encode and Decode: the calls that take a message from a client.
-#include <google/protobuf/util/json_util.h>
-
 #include <cmath>
 
 #include "service/acomms_service.h"
@@ -32,19 +30,13 @@ grpc::Status AcommsService::parse_message(const std::string& type, const std::st
       return {StatusCode::INVALID_ARGUMENT, "payload is not a serialized " + type};
     }
   } else if (json) {
-    google::protobuf::util::Status parsed = google::protobuf::util::JsonStringToMessage(*json, message.get());
-    if (!parsed.ok()) {
-      std::string why(parsed.message());
-      if (why.rfind(": ", 0) == 0) why.erase(0, 2);  // the parser leaves an empty path in front
-      return {StatusCode::INVALID_ARGUMENT, "json: " + why};
-    }
+    std::string why = json_reader_.parse(*json, message.get());
+    if (!why.empty()) return {StatusCode::INVALID_ARGUMENT, "json: " + why};
   } else {
     return {StatusCode::INVALID_ARGUMENT, "give the message as payload (protobuf) or json"};
   }
-  if (!message->IsInitialized()) {
-    return {StatusCode::INVALID_ARGUMENT,
-            type + ": required field(s) missing: " + message->InitializationErrorString()};
-  }
+  // Required fields are checked by the caller: Submit first fills the
+  // queue's source and time roles, which clients may leave out.
   *out = std::move(message);
   return grpc::Status::OK;
 }
@@ -104,6 +96,10 @@ grpc::Status AcommsService::Encode(grpc::ServerContext*, const v1::EncodeRequest
       request->type(), request->message_case() == v1::EncodeRequest::kPayload ? &request->payload() : nullptr,
       request->message_case() == v1::EncodeRequest::kJson ? &request->json() : nullptr, &message);
   if (!parsed.ok()) return parsed;
+  if (!message->IsInitialized()) {
+    return {grpc::StatusCode::INVALID_ARGUMENT,
+            request->type() + ": required field(s) missing: " + message->InitializationErrorString()};
+  }
   try {
     response->set_encoded(parts_.codec.encode(*message));
   } catch (const dccl::Error& e) {
