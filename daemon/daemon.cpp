@@ -120,11 +120,15 @@ void Daemon::schedule_expiry() {
 void Daemon::stop() {
   if (!server_ && !core_ && !store_) return;
   core::systemd_notify("STOPPING=1");
+  // The link stops first: the server's shutdown may take its whole grace
+  // period (an idle client connection holds it), and nothing should go on
+  // the air after the operator asked the daemon to stop. Calls still in
+  // flight meanwhile are journaled and go out after the next start.
+  if (core_ && link_) core_->call([this] { link_->stop(); });
   // Subscribe streams would otherwise hold the server's shutdown up.
   subscribers_.close();
   if (server_) server_->shutdown(std::chrono::seconds(2));
   server_.reset();
-  if (core_ && link_) core_->call([this] { link_->stop(); });
   if (core_) core_->stop();
   link_.reset();
   mac_.reset();

@@ -53,7 +53,9 @@ std::unique_ptr<dccl::Codec> make_codec(const v1::DcclConfig& config) {
     codec->set_crypto(passphrase, exempt);
     spdlog::info("dccl: bodies encrypted ({} id{} exempt)", exempt.size(), exempt.size() == 1 ? "" : "s");
   }
-  codec->set_strict(config.strict());
+  // Strict unless turned off: a client should hear that a value is out of
+  // range, not find it zeroed at the other end.
+  codec->set_strict(!config.has_strict() || config.strict());
   return codec;
 }
 

@@ -180,7 +180,26 @@ struct Codec::Impl {
   }
 };
 
+namespace {
+
+// The public .proto files installed beside the running executable:
+// <prefix>/share/acommsd/proto for <prefix>/bin/acommsd (the Debian package,
+// `cmake --install --prefix ...`). Empty when there is none, as in a build tree.
+std::string installed_proto_dir() {
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return {};
+  fs::path dir = exe.parent_path().parent_path() / "share" / "acommsd" / "proto";
+  return fs::is_regular_file(dir / kOptionsFile, ec) ? dir.string() : std::string();
+}
+
+}  // namespace
+
 Codec::Codec() : impl_(std::make_unique<Impl>()) {
+  // An installed binary's own copy comes first: the build-time directory may
+  // be a source tree that has since moved on, or not exist on this machine.
+  static const std::string installed = installed_proto_dir();
+  if (!installed.empty()) add_include_dir(installed);
 #ifdef ACOMMS_PROTO_DIR
   add_include_dir(ACOMMS_PROTO_DIR);
 #endif

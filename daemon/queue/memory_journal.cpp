@@ -6,6 +6,7 @@ int64_t MemoryJournal::append(JournalMessage message) {
   std::lock_guard lock(mutex_);
   message.id = next_id_++;
   int64_t id = message.id;
+  events_.push_back(queued_event(message));
   messages_.emplace(id, std::move(message));
   return id;
 }

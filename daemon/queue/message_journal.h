@@ -29,8 +29,10 @@ class MessageJournal {
  public:
   virtual ~MessageJournal() = default;
 
-  // Stores `message` durably and returns its new id once committed. Safe
-  // from any thread; concurrent calls share commits (group commit).
+  // Stores `message` durably, with its "queued" event (time submitted_at)
+  // in the same transaction, and returns its new id once committed: one
+  // commit per Submit, not two. Safe from any thread; concurrent calls share
+  // commits (group commit).
   virtual int64_t append(JournalMessage message) = 0;
 
   // Logs `event`, and forgets its message when event.removes_message.

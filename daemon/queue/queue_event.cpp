@@ -1,5 +1,7 @@
 #include "queue/queue_event.h"
 
+#include "queue/message_journal.h"
+
 namespace acomms::queue {
 
 // These words are stored in event_log.kind and shown to operators: changing
@@ -22,6 +24,17 @@ std::string_view to_string(QueueEventKind kind) {
       return "received";
   }
   return "unknown";
+}
+
+QueueEvent queued_event(const JournalMessage& message) {
+  QueueEvent event;
+  event.kind = QueueEventKind::kQueued;
+  event.time = message.submitted_at;
+  event.type = message.type;
+  event.message_id = message.id;
+  event.src = message.src;
+  event.dest = message.dest;
+  return event;
 }
 
 }  // namespace acomms::queue

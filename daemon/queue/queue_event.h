@@ -36,4 +36,9 @@ struct QueueEvent {
   bool removes_message = false;
 };
 
+struct JournalMessage;
+// The event that records `message` entering its queue (written by the
+// journal with the message itself).
+QueueEvent queued_event(const JournalMessage& message);
+
 }  // namespace acomms::queue

@@ -71,7 +71,7 @@ std::vector<std::string> QueueManager::add_types() {
 }
 
 void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMessage& record, double now,
-                        uint64_t frame_id, const char* detail, bool removes) {
+                        uint64_t frame_id, const char* detail, bool removes, bool journaled) {
   QueueStats& s = state.stats;
   switch (kind) {
     case QueueEventKind::kQueued: ++s.queued; break;
@@ -101,7 +101,7 @@ void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMess
                 frame_id ? " (frame " + std::to_string(frame_id) + ")" : "",
                 event.detail.empty() ? "" : ": " + event.detail);
   }
-  journal_.record(event);
+  if (!journaled) journal_.record(event);
 }
 
 void QueueManager::restore() {
@@ -178,7 +178,8 @@ bool QueueManager::accept(QueuedMessage message) {
     emit(QueueEventKind::kDropped, state, record, now, 0, "queue full: new message refused", true);
     return false;
   }
-  emit(QueueEventKind::kQueued, state, record, now, 0, "", false);
+  // The journal logged "queued" with the message itself: count it only.
+  emit(QueueEventKind::kQueued, state, record, now, 0, "", false, /*journaled=*/true);
   if (dropped) emit(QueueEventKind::kDropped, state, dropped->record, now, 0, "queue full: oldest dropped", true);
   return true;
 }

@@ -122,8 +122,9 @@ class QueueManager {
   struct Contender;
   std::vector<Contender> contenders(double now);
   TypeState* contest(std::vector<Contender>& field, double now, size_t room, int32_t dest);
+  // Counts, logs and journals an event (`journaled`: the journal already has it).
   void emit(QueueEventKind kind, TypeState& state, const JournalMessage& message, double now,
-            uint64_t frame_id, const char* detail, bool removes);
+            uint64_t frame_id, const char* detail, bool removes, bool journaled = false);
 
   const dccl::Codec& codec_;
   v1::QueueConfig config_;

@@ -42,7 +42,7 @@ void bind_or_null(Statement& statement, int index, int64_t value, int64_t none) 
 
 int64_t SqliteJournal::append(JournalMessage message) {
   return writer_
-      .submit([this, message = std::move(message)](Database& db) {
+      .submit([this, message = std::move(message)](Database& db) mutable {
         Statement& insert = writer_.prepared(kInsertMessage);
         ResetOnExit reset(insert);
         insert.bind(1, message.type)
@@ -52,33 +52,39 @@ int64_t SqliteJournal::append(JournalMessage message) {
             .bind_double(5, message.submitted_at)
             .bind_double(6, message.ttl_s);
         insert.step();
-        return static_cast<int64_t>(sqlite3_last_insert_rowid(db.handle()));
+        message.id = static_cast<int64_t>(sqlite3_last_insert_rowid(db.handle()));
+        // Its "queued" event rides in the same commit.
+        write_event(queued_event(message));
+        return message.id;
       })
       .get();
 }
 
 void SqliteJournal::record(const QueueEvent& event) {
-  writer_.post([this, event](Database&) {
-    Statement& insert = writer_.prepared(kInsertEvent);
-    ResetOnExit reset_insert(insert);
-    insert.bind_double(1, event.time).bind(2, to_string(event.kind)).bind(3, event.type);
-    bind_or_null(insert, 4, event.message_id, 0);
-    // Frame ids are unsigned; SQLite integers are signed 64-bit. The bits are
-    // kept: ids past 2^63 read back negative, but stay distinct.
-    bind_or_null(insert, 5, static_cast<int64_t>(event.frame_id), 0);
-    bind_or_null(insert, 6, event.src, -1);
-    bind_or_null(insert, 7, event.dest, -1);
-    insert.bind(8, event.detail);
-    insert.step();
-    // Same savepoint, same transaction: the event and the removal are on disk
-    // together or not at all.
-    if (event.removes_message && event.message_id != 0) {
-      Statement& remove = writer_.prepared(kDeleteMessage);
-      ResetOnExit reset_remove(remove);
-      remove.bind(1, event.message_id);
-      remove.step();
-    }
-  });
+  writer_.post([this, event](Database&) { write_event(event); });
+}
+
+// On the writer thread, inside the request's savepoint.
+void SqliteJournal::write_event(const QueueEvent& event) {
+  Statement& insert = writer_.prepared(kInsertEvent);
+  ResetOnExit reset_insert(insert);
+  insert.bind_double(1, event.time).bind(2, to_string(event.kind)).bind(3, event.type);
+  bind_or_null(insert, 4, event.message_id, 0);
+  // Frame ids are unsigned; SQLite integers are signed 64-bit. The bits are
+  // kept: ids past 2^63 read back negative, but stay distinct.
+  bind_or_null(insert, 5, static_cast<int64_t>(event.frame_id), 0);
+  bind_or_null(insert, 6, event.src, -1);
+  bind_or_null(insert, 7, event.dest, -1);
+  insert.bind(8, event.detail);
+  insert.step();
+  // Same savepoint, same transaction: the event and the removal are on disk
+  // together or not at all.
+  if (event.removes_message && event.message_id != 0) {
+    Statement& remove = writer_.prepared(kDeleteMessage);
+    ResetOnExit reset_remove(remove);
+    remove.bind(1, event.message_id);
+    remove.step();
+  }
 }
 
 std::vector<JournalMessage> SqliteJournal::load() {

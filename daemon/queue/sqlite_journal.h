@@ -30,6 +30,8 @@ class SqliteJournal final : public MessageJournal {
   void flush() override;
 
  private:
+  void write_event(const QueueEvent& event);
+
   store::GroupCommitWriter& writer_;
 };
 

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 namespace acomms::service {
@@ -93,8 +94,24 @@ std::vector<const dccl::TypeInfo*> DefinitionLoader::load(const v1::LoadDefiniti
   }
   // Inline texts are written first (each checked against what is already
   // there), so that they may import one another.
+  // A file this request wrote that then did not load is removed again, so
+  // the name stays free for the corrected text.
+  std::set<std::string> written;
+  std::set<std::string> loaded_paths;
+  struct RemoveUnloaded {
+    std::set<std::string>& written;
+    std::set<std::string>& loaded;
+    ~RemoveUnloaded() {
+      std::error_code ec;
+      for (const std::string& path : written) {
+        if (!loaded.count(path)) fs::remove(path, ec);
+      }
+    }
+  } cleanup{written, loaded_paths};
   for (const v1::InlineDefinition& definition : request.inline_()) {
-    files.push_back(write_inline(definition, include_dirs));
+    bool fresh = false;
+    files.push_back(write_inline(definition, include_dirs, &fresh));
+    if (fresh) written.insert(files.back().path);
   }
   if (files.empty()) {
     throw DefinitionError(DefinitionError::Code::kInvalid, "give at least one path or inline definition");
@@ -107,14 +124,26 @@ std::vector<const dccl::TypeInfo*> DefinitionLoader::load(const v1::LoadDefiniti
       auto file_types = codec_.load(file.path, file.include_dirs);
       types.insert(types.end(), file_types.begin(), file_types.end());
     } catch (const dccl::Error& e) {
-      std::string before = loaded.empty() ? "nothing was loaded" : "loaded before it: " + join_lines(loaded);
-      throw DefinitionError(DefinitionError::Code::kInvalid, file.path + ":\n" + e.what() + "\n(" + before + ")");
+      std::string before = loaded.empty() ? "" : "\n(loaded before it: " + join_lines(loaded) + ")";
+      std::string why = e.what();
+      // Syntax errors already begin "file:line:col"; DCCL rule errors name
+      // only the type, so say which file.
+      std::string name = display_name(file.path);
+      if (why.find(name) == std::string::npos) why = name + ": " + why;
+      throw DefinitionError(DefinitionError::Code::kInvalid, why + before);
     }
-    loaded.push_back(file.path);
+    loaded.push_back(display_name(file.path));
+    loaded_paths.insert(file.path);
     queues_.add_types();
     record(file);
   }
   return types;
+}
+
+// Inline definitions by the name the client gave, not where they are kept.
+std::string DefinitionLoader::display_name(const std::string& path) const {
+  std::string prefix = fs::absolute(inline_dir_).string() + "/";
+  return path.rfind(prefix, 0) == 0 ? path.substr(prefix.size()) : path;
 }
 
 void DefinitionLoader::check_exists(const std::string& path, const std::vector<std::string>& include_dirs) const {
@@ -133,7 +162,7 @@ void DefinitionLoader::check_exists(const std::string& path, const std::vector<s
 }
 
 RecordedDefinition DefinitionLoader::write_inline(const v1::InlineDefinition& definition,
-                                                  const std::vector<std::string>& include_dirs) {
+                                                  const std::vector<std::string>& include_dirs, bool* fresh) {
   check_inline_name(definition.name());
   fs::path path = fs::path(inline_dir_) / definition.name();
   if (std::optional<std::string> existing = read_file(path)) {
@@ -160,6 +189,7 @@ RecordedDefinition DefinitionLoader::write_inline(const v1::InlineDefinition& de
     }
     fs::rename(partial, path, ec);
     if (ec) throw DefinitionError(DefinitionError::Code::kStore, "cannot write " + path.string() + ": " + ec.message());
+    *fresh = true;
   }
   // Absolute, so a file of the same name in the daemon's working directory
   // is never taken instead.

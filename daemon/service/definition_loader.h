@@ -56,10 +56,12 @@ class DefinitionLoader {
   const std::string& inline_dir() const { return inline_dir_; }
 
  private:
+  // Writes the text under inline_dir (*fresh: it was not there before).
   RecordedDefinition write_inline(const v1::InlineDefinition& definition,
-                                  const std::vector<std::string>& include_dirs);
+                                  const std::vector<std::string>& include_dirs, bool* fresh);
   void check_exists(const std::string& path, const std::vector<std::string>& include_dirs) const;
   void record(const RecordedDefinition& definition);
+  std::string display_name(const std::string& path) const;
 
   dccl::Codec& codec_;
   queue::QueueManager& queues_;

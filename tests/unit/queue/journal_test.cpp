@@ -180,7 +180,7 @@ TEST_F(JournalTest, EventRowsHoldEveryFieldAndNullForNone) {
                     std::vector<Row> rows;
                     Statement q = db.prepare(
                         "SELECT time, kind, type, message_id, frame_id, src, dest, detail "
-                        "FROM event_log ORDER BY id");
+                        "FROM event_log WHERE kind != 'queued' ORDER BY id");
                     while (q.step()) {
                       rows.push_back({q.column_double(0), q.column_text(1), q.column_text(2),
                                       q.column_text(7), q.is_null(3), q.is_null(4), q.is_null(5),
@@ -224,7 +224,7 @@ TEST_F(JournalTest, RemovalAndItsEventAreStoredTogetherOrNotAtAll) {
   journal().record(bad_event);
   journal().record(removal(b));
   journal().flush();
-  EXPECT_EQ(count("SELECT count(*) FROM event_log"), 0);
+  EXPECT_EQ(count("SELECT count(*) FROM event_log WHERE kind != 'queued'"), 0);
   EXPECT_EQ(count("SELECT count(*) FROM queued_messages"), 2);
 
   // And when both halves succeed, both are there.
@@ -245,7 +245,20 @@ TEST_F(JournalTest, RecordIsAppliedAfterTheAppendBeforeIt) {
   }
   journal().flush();
   EXPECT_TRUE(journal().load().empty());
-  EXPECT_EQ(count("SELECT count(*) FROM event_log"), 50);
+  EXPECT_EQ(count("SELECT count(*) FROM event_log WHERE kind = 'queued'"), 50);
+  EXPECT_EQ(count("SELECT count(*) FROM event_log WHERE kind = 'acked'"), 50);
+}
+
+TEST_F(JournalTest, AppendLogsTheQueuedEventInTheSameCommit) {
+  JournalMessage m = message("q");
+  m.src = 3;
+  m.dest = 4;
+  m.submitted_at = 1234.5;
+  int64_t id = journal().append(m);
+  // No flush: append() returned, so its commit (and the event in it) is done.
+  EXPECT_EQ(count("SELECT count(*) FROM event_log WHERE kind = 'queued' AND message_id = " + std::to_string(id) +
+                  " AND src = 3 AND dest = 4 AND time = 1234.5 AND type = 'test.Message'"),
+            1);
 }
 
 TEST_F(JournalTest, ConcurrentAppendsGetUniqueIds) {
