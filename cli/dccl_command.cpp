@@ -172,8 +172,8 @@ int run_analyze(const DcclOptions& options) {
 }
 
 void add_schema_options(CLI::App* command, DcclOptions& options) {
-  command->add_option("-f,--proto", options.proto_files, "DCCL .proto file(s) to load")->required();
-  command->add_option("-I,--include", options.include_dirs, "Directory to resolve imports in");
+  command->add_option("-f,--proto", options.proto_files, "DCCL .proto file(s) to load")->required()->type_name("FILE");
+  command->add_option("-I,--include", options.include_dirs, "Directory to resolve imports in")->type_name("DIR");
 }
 
 // encode and decode: schema options, --passphrase, and a line-by-line run

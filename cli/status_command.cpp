@@ -1,26 +1,13 @@
 #include "status_command.h"
 
-#include <google/protobuf/util/json_util.h>
-
 #include <cstdio>
-#include <iostream>
-#include <stdexcept>
 
-#include "acomms/v1/acomms.grpc.pb.h"
-#include "connection.h"
+#include "api_client.h"
 #include "global_options.h"
+#include "output.h"
 
 namespace acomms::cli {
 namespace {
-
-std::string to_json(const google::protobuf::Message& message) {
-  google::protobuf::util::JsonPrintOptions options;
-  options.preserve_proto_field_names = true;
-  options.always_print_primitive_fields = true;
-  std::string json;
-  (void)google::protobuf::util::MessageToJsonString(message, &json, options);
-  return json;
-}
 
 void print_human(const v1::Status& status) {
   std::printf("acommsd %s\n", status.version().c_str());
@@ -33,16 +20,10 @@ void print_human(const v1::Status& status) {
 }
 
 void run_status(const GlobalOptions& options) {
-  auto channel = connect(options.endpoint, options.timeout_s);
-  auto stub = v1::Acomms::NewStub(channel);
-  grpc::ClientContext context;
-  context.set_deadline(std::chrono::system_clock::now() +
-                       std::chrono::milliseconds(static_cast<int64_t>(options.timeout_s * 1000)));
-  v1::Status status;
-  grpc::Status rpc = stub->GetStatus(&context, v1::GetStatusRequest(), &status);
-  if (!rpc.ok()) throw std::runtime_error("GetStatus failed: " + rpc.error_message());
+  ApiClient client(options);
+  v1::Status status = client.call(&v1::Acomms::Stub::GetStatus, v1::GetStatusRequest());
   if (options.json) {
-    std::cout << to_json(status) << "\n";
+    print_json(status);
   } else {
     print_human(status);
   }
@@ -51,7 +32,9 @@ void run_status(const GlobalOptions& options) {
 }  // namespace
 
 void add_status_command(CLI::App& app, const GlobalOptions& options) {
-  CLI::App* status = app.add_subcommand("status", "Show the daemon's version, uptime and setup");
+  CLI::App* status = app.add_subcommand(
+      "status", "Show the daemon's version, uptime, data directory, driver, MAC and how many DCCL types it has");
+  status->footer("Example:\n  acommsctl status --json");
   status->callback([&options] { run_status(options); });
 }
 

@@ -1,0 +1,122 @@
+#include "events_command.h"
+
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "api_client.h"
+#include "global_options.h"
+#include "output.h"
+#include "rpc_error.h"
+
+namespace acomms::cli {
+namespace {
+
+struct EventsOptions {
+  std::string since;
+  std::string until;
+  std::vector<std::string> kinds;
+  std::vector<std::string> types;
+  int64_t message_id = 0;
+  uint32_t limit = 0;
+};
+
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+std::string id_text(int64_t id) { return id > 0 ? std::to_string(id) : "-"; }
+
+void print_events(const v1::EventsResponse& response) {
+  if (response.truncated()) std::printf("(older events left out; narrow with --since or raise --limit)\n");
+  std::printf("%-25s %-9s %-28s %7s %-17s %-8s %s\n", "TIME", "KIND", "TYPE", "MESSAGE", "FRAME", "SRC>DEST", "DETAIL");
+  for (const v1::Event& e : response.events()) {
+    std::string frame = e.frame_id() > 0 ? std::to_string(e.frame_id()) : "-";
+    std::printf("%-25s %-9s %-28s %7s %-17s %-8s %s\n", utc_text(e.time()).c_str(), e.kind().c_str(), e.type().c_str(),
+                id_text(e.message_id()).c_str(), frame.c_str(), route_text(e.src(), e.dest()).c_str(), e.detail().c_str());
+  }
+}
+
+void run_events(const GlobalOptions& global, const EventsOptions& options) {
+  v1::EventsRequest request;
+  const double now = now_s();
+  if (!options.since.empty()) request.set_since(parse_time(options.since, now));
+  if (!options.until.empty()) request.set_until(parse_time(options.until, now));
+  for (const std::string& kind : options.kinds) request.add_kinds(kind);
+  for (const std::string& type : options.types) request.add_types(type);
+  request.set_message_id(options.message_id);
+  request.set_limit(options.limit);
+  ApiClient client(global);
+  v1::EventsResponse response = client.call(&v1::Acomms::Stub::Events, request);
+  if (global.json) {
+    print_json(response);
+  } else {
+    print_events(response);
+  }
+}
+
+}  // namespace
+
+const std::vector<std::string>& event_kinds() {
+  static const std::vector<std::string> kinds = {"queued", "sent", "acked", "expired", "dropped", "retry", "received"};
+  return kinds;
+}
+
+double parse_time(const std::string& text, double now_s) {
+  if (text == "now") return now_s;
+  auto bad = [&] {
+    return UsageError("time \"" + text + "\": give seconds since the Unix epoch, \"now\", or -30s, -10m, -2h, -1d");
+  };
+  if (text.size() >= 3 && text[0] == '-') {
+    double unit = 0;
+    switch (text.back()) {
+      case 's': unit = 1; break;
+      case 'm': unit = 60; break;
+      case 'h': unit = 3600; break;
+      case 'd': unit = 86400; break;
+      default: throw bad();
+    }
+    double amount = 0;
+    const char* end = text.data() + text.size() - 1;
+    auto [ptr, error] = std::from_chars(text.data() + 1, end, amount);
+    if (error != std::errc() || ptr != end || amount < 0) throw bad();
+    return now_s - amount * unit;
+  }
+  double seconds = 0;
+  const char* end = text.data() + text.size();
+  auto [ptr, error] = std::from_chars(text.data(), end, seconds);
+  if (text.empty() || error != std::errc() || ptr != end || seconds < 0) throw bad();
+  return seconds;
+}
+
+void add_events_command(CLI::App& app, const GlobalOptions& global) {
+  static EventsOptions options;
+  CLI::App* events = app.add_subcommand("events", "The event log: what happened to each message, and when");
+  events->add_option("--since", options.since, "From this time (default: the beginning)")->type_name("T");
+  events->add_option("--until", options.until, "Up to this time (default: now)")->type_name("T");
+  std::string kinds;
+  for (const std::string& kind : event_kinds()) kinds += (kinds.empty() ? "" : ", ") + kind;
+  events->add_option("--kind", options.kinds, "Only these kinds: " + kinds)
+      ->type_name("KIND")
+      ->allow_extra_args(false)
+      ->check(CLI::IsMember(event_kinds()));
+  events->add_option("--type", options.types, "Only these message types")
+      ->type_name("TYPE")
+      ->allow_extra_args(false);
+  events->add_option("--message", options.message_id, "Only this message's history (its id)")->type_name("ID");
+  events->add_option("--limit", options.limit, "At most this many, the newest (default 1000, most 10000)")
+      ->type_name("N");
+  events->footer(
+      "Oldest first: each message's story (queued, sent in a frame, acked, retried, expired, dropped "
+      "or cancelled) and what was received. T is seconds since the Unix epoch, \"now\", or relative "
+      "to now: -30s, -10m, -2h, -1d.\n\n"
+      "Examples:\n"
+      "  acommsctl events --since -10m\n"
+      "  acommsctl events --message 42\n"
+      "  acommsctl events --kind dropped --kind expired --type gv.NavigationReport --since -2h");
+  events->callback([&global] { run_events(global, options); });
+}
+
+}  // namespace acomms::cli

@@ -1,0 +1,182 @@
+#include "link_command.h"
+
+#include <google/protobuf/util/json_util.h>
+
+#include <charconv>
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "api_client.h"
+#include "global_options.h"
+#include "output.h"
+#include "rpc_error.h"
+
+namespace acomms::cli {
+namespace {
+
+constexpr const char* kSlotSyntax = "SRC[:DEST]@RATE/SECONDS, e.g. 1@1/10 or 2:1@1/10";
+
+struct CycleOptions {
+  std::vector<std::string> slots;
+  std::string json;
+  CLI::Option* json_option = nullptr;
+};
+
+template <typename T>
+bool parse_whole(const std::string& text, T* value) {
+  const char* end = text.data() + text.size();
+  auto [ptr, error] = std::from_chars(text.data(), end, *value);
+  return !text.empty() && error == std::errc() && ptr == end;
+}
+
+std::string slot_text(const v1::MacSlot& slot) {
+  return std::to_string(slot.src()) + (slot.has_dest() ? ":" + std::to_string(slot.dest()) : "") + "@" +
+         std::to_string(slot.rate()) + "/" + number_text(slot.seconds());
+}
+
+void print_status(const v1::LinkStatusResponse& link) {
+  const v1::DriverStatus& driver = link.driver();
+  std::printf("modem id:     %u\n", link.modem_id());
+  std::printf("driver:       %s, %s (started %llu time(s), %llu failure(s))\n", driver.name().c_str(),
+              driver.state().c_str(), static_cast<unsigned long long>(driver.starts()),
+              static_cast<unsigned long long>(driver.failures()));
+  if (!driver.summary().empty() && driver.summary() != driver.state()) std::printf("              %s\n", driver.summary().c_str());
+  if (!driver.last_error().empty()) std::printf("  last error: %s\n", driver.last_error().c_str());
+  std::printf("mac:          %s", link.mac().empty() ? "none" : link.mac().c_str());
+  if (link.cycle_size() > 0) std::printf(", cycle %s s", number_text(link.cycle_seconds()).c_str());
+  std::printf("\n");
+  for (int i = 0; i < link.cycle_size(); ++i) {
+    const v1::MacSlot& slot = link.cycle(i);
+    std::string dest = slot.has_dest() ? std::to_string(slot.dest()) : "any";
+    std::printf("  slot %-3d    %s  (src %d -> %s, rate %d, %s s)\n", i + 1, slot_text(slot).c_str(), slot.src(),
+                dest.c_str(), slot.rate(), number_text(slot.seconds()).c_str());
+  }
+  std::string nodes;
+  for (int32_t node : link.known_nodes()) nodes += (nodes.empty() ? "" : ", ") + std::to_string(node);
+  std::printf("known nodes:  %s\n", nodes.empty() ? "-" : nodes.c_str());
+  const v1::LinkCounters& c = link.counters();
+  std::printf("counters:     sent %llu, failed %llu, data received %llu, acks received %llu,\n"
+              "              delivered %llu, duplicates dropped %llu, malformed frames %llu\n",
+              static_cast<unsigned long long>(c.transmissions_sent()),
+              static_cast<unsigned long long>(c.transmissions_failed()),
+              static_cast<unsigned long long>(c.data_received()), static_cast<unsigned long long>(c.acks_received()),
+              static_cast<unsigned long long>(c.messages_delivered()),
+              static_cast<unsigned long long>(c.duplicates_dropped()),
+              static_cast<unsigned long long>(c.malformed_frames()));
+}
+
+void run_status(const GlobalOptions& global) {
+  ApiClient client(global);
+  v1::LinkStatusResponse response = client.call(&v1::Acomms::Stub::LinkStatus, v1::LinkStatusRequest());
+  if (global.json) {
+    print_json(response);
+  } else {
+    print_status(response);
+  }
+}
+
+v1::SetCycleRequest cycle_from_json(const std::string& json) {
+  // The array is parsed as SetCycleRequest.slot, so the names are the API's.
+  v1::SetCycleRequest request;
+  auto status = google::protobuf::util::JsonStringToMessage("{\"slot\":" + json + "}", &request);
+  if (!status.ok()) {
+    throw UsageError("--json: expected an array of slots like [{\"src\":1,\"rate\":1,\"seconds\":10}]: " +
+                     std::string(status.message()));
+  }
+  return request;
+}
+
+void run_cycle(const GlobalOptions& global, CycleOptions options) {
+  // `link cycle 1@1/10 --json` asks for JSON output; CLI11 gave --json the
+  // next word, which is a slot when it is not a JSON array.
+  const size_t first = options.json.find_first_not_of(" \t\n");
+  if (first != std::string::npos && options.json[first] != '[') {
+    options.slots.push_back(options.json);
+    options.json.clear();
+  }
+  const bool json_in = options.json.find_first_not_of(" \t\n") != std::string::npos;
+  if (json_in && !options.slots.empty()) throw UsageError("give the cycle either as SLOT arguments or as --json, not both");
+  if (!json_in && options.slots.empty()) throw UsageError("no slots: give at least one " + std::string(kSlotSyntax));
+  v1::SetCycleRequest request;
+  if (json_in) {
+    request = cycle_from_json(options.json);
+  } else {
+    for (const std::string& slot : options.slots) *request.add_slot() = parse_slot(slot);
+  }
+  ApiClient client(global);
+  v1::SetCycleResponse response = client.call(&v1::Acomms::Stub::SetCycle, request);
+  if (global.json || options.json_option->count() > 0) {
+    print_json(response);
+  } else {
+    std::printf("cycle of %d slot(s), %s s, takes effect at the next cycle boundary\n", request.slot_size(),
+                number_text(response.cycle_seconds()).c_str());
+  }
+}
+
+}  // namespace
+
+v1::MacSlot parse_slot(const std::string& text) {
+  auto bad = [&](const std::string& why) {
+    return UsageError("slot \"" + text + "\": " + why + " (a slot is " + kSlotSyntax + ")");
+  };
+  const size_t at = text.find('@');
+  if (at == std::string::npos) throw bad("no '@' before the rate");
+  const size_t slash = text.find('/', at);
+  if (slash == std::string::npos) throw bad("no '/' before the seconds");
+  const std::string who = text.substr(0, at);
+  const size_t colon = who.find(':');
+  v1::MacSlot slot;
+  int32_t src = 0, dest = 0, rate = 0;
+  double seconds = 0;
+  if (!parse_whole(who.substr(0, colon), &src)) throw bad("SRC is not a modem id");
+  slot.set_src(src);
+  if (colon != std::string::npos) {
+    if (!parse_whole(who.substr(colon + 1), &dest)) throw bad("DEST is not a modem id");
+    slot.set_dest(dest);
+  }
+  if (!parse_whole(text.substr(at + 1, slash - at - 1), &rate)) throw bad("RATE is not a whole number");
+  slot.set_rate(rate);
+  if (!parse_whole(text.substr(slash + 1), &seconds) || !(seconds > 0)) throw bad("SECONDS is not a positive number");
+  slot.set_seconds(seconds);
+  return slot;
+}
+
+void add_link_command(CLI::App& app, const GlobalOptions& global) {
+  static CycleOptions cycle_options;
+  CLI::App* link = app.add_subcommand("link", "The acoustic link: modem driver health and the MAC's TDMA cycle");
+  link->require_subcommand(1);
+  link->footer("Example:\n  acommsctl link status");
+
+  CLI::App* status = link->add_subcommand("status", "Modem driver state, MAC cycle, known nodes, counters");
+  status->footer(
+      "Shows the modem driver (running, or restarting after a failure), the MAC and its cycle of slots, "
+      "the nodes it knows, and link counters (transmissions, acks, messages delivered, duplicates, "
+      "malformed frames).\n\n"
+      "Example:\n  acommsctl link status --json");
+  status->callback([&global] { run_status(global); });
+
+  CLI::App* cycle = link->add_subcommand("cycle", "Replace the MAC's TDMA cycle of slots");
+  cycle->add_option("SLOT", cycle_options.slots,
+                    "Slots in order, each SRC[:DEST]@RATE/SECONDS: SRC transmits (modem id), to DEST "
+                    "(default: the queues choose), at Micro-Modem RATE (0 = FSK), for SECONDS")
+      ->type_name("");
+  cycle_options.json_option =
+      cycle->add_option("--json", cycle_options.json,
+                        "The cycle as a JSON array of {src, dest, rate, seconds} instead of SLOTs "
+                        "(output is JSON too); alone, just JSON output")
+          ->expected(0, 1)
+          ->type_name("JSON");
+  cycle->footer(
+      "For the polled and fixed MACs. A slot is SRC[:DEST]@RATE/SECONDS: modem SRC transmits, to DEST "
+      "(default: its queues choose), at Micro-Modem RATE (0 = FSK), for SECONDS. The new cycle takes "
+      "effect at the next cycle boundary and lasts until the daemon restarts. Every node of a fixed "
+      "TDMA network must be given the same cycle.\n\n"
+      "Examples:\n"
+      "  acommsctl link cycle 1@1/10 2:1@1/10      node 1 sends 10 s at rate 1, then node 2 to node 1\n"
+      "  acommsctl link cycle --json '[{\"src\":1,\"rate\":1,\"seconds\":10},{\"src\":2,\"dest\":1,\"rate\":1,\"seconds\":10}]'");
+  cycle->callback([&global] { run_cycle(global, cycle_options); });
+}
+
+}  // namespace acomms::cli

@@ -1,0 +1,20 @@
+#pragma once
+// `acommsctl link status|cycle`: the modem driver and the MAC's slot cycle.
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "acomms/v1/config.pb.h"
+
+namespace acomms::cli {
+
+struct GlobalOptions;
+
+void add_link_command(CLI::App& app, const GlobalOptions& options);
+
+// "SRC[:DEST]@RATE/SECONDS", e.g. "2:1@1/10". Throws UsageError naming the
+// slot and the syntax.
+v1::MacSlot parse_slot(const std::string& text);
+
+}  // namespace acomms::cli
