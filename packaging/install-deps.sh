@@ -16,6 +16,10 @@ packages=(
 if [[ "${1:-}" == "--test" ]]; then
   # clang and its runtime give libFuzzer with ASan/UBSan for the fuzz targets
   packages+=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev)
+  # the Python client example and its test (tests/integration/python_client_test.py)
+  packages+=(python3-grpcio python3-protobuf)
+  # the package test: dpkg-shlibdeps for cpack, systemd-analyze to verify the unit
+  packages+=(dpkg-dev systemd)
 fi
 
 missing=()

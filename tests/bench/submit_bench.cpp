@@ -1,0 +1,435 @@
+// Durable Submit through a real acommsd, as clients see it: submits per
+// second and per-call latency (p50, p99) with 1 and 8 concurrent clients, and
+// the daemon's resident memory when idle on examples/vehicle.conf.
+//
+// Each client is a thread with its own gRPC channel (its own connection) on
+// the unix socket, calling Submit synchronously in a loop; every call is
+// answered only once its message is durably in SQLite (WAL, synchronous=FULL,
+// group commit). The daemon runs the sim driver with mac "none", so nothing
+// is ever sent, and one DCCL type whose queue drops its oldest message
+// instead of refusing (max_queue 1,000,000): no submit is refused.
+//
+// Goals (issue: API performance): 20,000 durable submits/s with 8 clients,
+// p99 < 5 ms; idle RSS < 30 MB. Printed next to the figures, not asserted:
+// this is a benchmark. It exits non-zero only when a submit fails or the
+// daemon misbehaves (what the ctest smoke run checks).
+//
+//   build/tests/bench/submit_bench [--duration 5] [--warmup 1] [--clients 1,8]
+//                                  [--idle 3] [--dir /tmp] [--json] [--no-rss] [--baseline]
+//   --baseline also times GetStatus the same way: the gRPC round trip alone.
+
+#include <grpcpp/grpcpp.h>
+#include <signal.h>
+#include <sys/vfs.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "acomms/v1/acomms.grpc.pb.h"
+#include "child_process.h"
+#include "daemon_harness.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace acomms;
+using Clock = std::chrono::steady_clock;
+using namespace std::chrono_literals;
+
+constexpr double kGoalSubmitsPerSecond = 20000;  // with 8 clients
+constexpr int kGoalClients = 8;
+constexpr double kGoalP99Ms = 5;
+constexpr double kGoalIdleRssMb = 30;
+
+struct Options {
+  double duration = 5;
+  double warmup = 1;
+  double idle = 3;
+  std::vector<int> clients = {1, 8};
+  std::string base_dir = fs::temp_directory_path().string();
+  std::string acommsd = ACOMMSD_BINARY;
+  std::string example_config = ACOMMS_SOURCE_DIR "/examples/vehicle.conf";
+  bool json = false;
+  bool rss = true;
+  // Also time GetStatus (no store, no core thread): what the gRPC round trip
+  // alone costs, the ceiling under any Submit figure.
+  bool baseline = false;
+};
+
+constexpr const char* kBenchProto = R"(syntax = "proto2";
+import "dccl/option_extensions.proto";
+package bench;
+message Status {
+  option (dccl.msg) = { codec_version: 4 id: 90 max_bytes: 32 };
+  required int32 seq = 1 [(dccl.field) = { min: 0 max: 65535 }];
+  required double depth = 2 [(dccl.field) = { min: 0 max: 1000 precision: 1 }];
+  required int32 battery = 3 [(dccl.field) = { min: 0 max: 100 }];
+}
+)";
+
+struct Memory {
+  long rss_kb = -1;
+  long hwm_kb = -1;
+};
+
+// VmRSS and VmHWM of a process, from /proc/PID/status.
+Memory memory_of(pid_t pid) {
+  Memory memory;
+  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("VmRSS:", 0) == 0) memory.rss_kb = std::stol(line.substr(6));
+    if (line.rfind("VmHWM:", 0) == 0) memory.hwm_kb = std::stol(line.substr(6));
+  }
+  return memory;
+}
+
+std::string filesystem_name(const std::string& path) {
+  struct statfs info {};
+  if (::statfs(path.c_str(), &info) != 0) return "?";
+  switch (static_cast<unsigned long>(info.f_type)) {
+    case 0xEF53: return "ext4";
+    case 0x01021994: return "tmpfs";
+    case 0x58465342: return "xfs";
+    case 0x9123683E: return "btrfs";
+    case 0x794C7630: return "overlayfs";
+    default: return "fs type 0x" + [&] {
+      char hex[32];
+      std::snprintf(hex, sizeof(hex), "%lx", static_cast<unsigned long>(info.f_type));
+      return std::string(hex);
+    }();
+  }
+}
+
+// SIGTERM, then the exit code (nullopt: it had to be killed, or died by a
+// signal).
+std::optional<int> stop(testing::ChildProcess& daemon) {
+  daemon.signal(SIGTERM);
+  std::optional<int> code = daemon.wait(20s);
+  if (!code && daemon.running()) {
+    daemon.signal(SIGKILL);
+    daemon.wait(5s);
+  }
+  return code;
+}
+
+struct Row {
+  std::string call = "Submit";
+  int clients = 0;
+  double seconds = 0;
+  uint64_t calls = 0;
+  uint64_t failed = 0;
+  std::string first_error;
+  double p50_ms = 0, p99_ms = 0, p999_ms = 0, max_ms = 0, mean_ms = 0;
+  double rate() const { return seconds > 0 ? calls / seconds : 0; }
+};
+
+double percentile(const std::vector<float>& sorted_us, double p) {
+  if (sorted_us.empty()) return 0;
+  size_t rank = static_cast<size_t>(std::ceil(p * sorted_us.size()));
+  return sorted_us[std::clamp<size_t>(rank, 1, sorted_us.size()) - 1] / 1e3;
+}
+
+// `clients` threads, each with its own channel, submitting for warm-up then
+// for the measured duration. Only calls started in the measured window count.
+Row run_clients(const Options& options, const std::string& socket, int clients, bool get_status) {
+  enum Phase { kWarmup, kMeasure, kStop };
+  std::atomic<int> phase{kWarmup};
+  std::atomic<int> connected{0};
+  std::atomic<bool> go{false};
+  std::mutex mutex;
+  Row row;
+  row.call = get_status ? "GetStatus" : "Submit";
+  row.clients = clients;
+  std::vector<std::vector<float>> latencies(clients);
+  std::vector<std::thread> threads;
+  for (int c = 0; c < clients; ++c) {
+    threads.emplace_back([&, c] {
+      grpc::ChannelArguments args;
+      // Channels with equal arguments would otherwise share one connection.
+      args.SetInt(GRPC_ARG_USE_LOCAL_SUBCHANNEL_POOL, 1);
+      auto channel = grpc::CreateCustomChannel("unix:" + socket, grpc::InsecureChannelCredentials(), args);
+      channel->WaitForConnected(std::chrono::system_clock::now() + 10s);
+      auto stub = v1::Acomms::NewStub(channel);
+      std::vector<float>& mine = latencies[c];
+      mine.reserve(1 << 18);
+      uint64_t failed = 0;
+      ++connected;
+      while (!go.load()) std::this_thread::yield();
+      v1::SubmitRequest request;
+      request.set_type("bench.Status");
+      v1::SubmitResponse response;
+      v1::GetStatusRequest status_request;
+      v1::Status status_response;
+      for (uint32_t seq = 0;; ++seq) {
+        int now_phase = phase.load(std::memory_order_relaxed);
+        if (now_phase == kStop) break;
+        request.set_json("{\"seq\":" + std::to_string(seq % 65536) + ",\"depth\":" +
+                         std::to_string((seq * 7 + c) % 1000) + ".5,\"battery\":" +
+                         std::to_string(seq % 101) + "}");
+        grpc::ClientContext context;
+        context.set_deadline(std::chrono::system_clock::now() + 10s);
+        auto start = Clock::now();
+        grpc::Status status = get_status ? stub->GetStatus(&context, status_request, &status_response)
+                                         : stub->Submit(&context, request, &response);
+        auto elapsed = Clock::now() - start;
+        if (!status.ok()) {
+          ++failed;
+          std::lock_guard lock(mutex);
+          if (row.first_error.empty()) {
+            row.first_error = "code " + std::to_string(status.error_code()) + ": " + status.error_message();
+          }
+          continue;
+        }
+        if (now_phase == kMeasure) {
+          mine.push_back(std::chrono::duration<float, std::micro>(elapsed).count());
+        }
+      }
+      std::lock_guard lock(mutex);
+      row.failed += failed;
+    });
+  }
+  while (connected.load() < clients) std::this_thread::sleep_for(1ms);
+  go = true;
+  std::this_thread::sleep_for(std::chrono::duration<double>(options.warmup));
+  auto start = Clock::now();
+  phase = kMeasure;
+  std::this_thread::sleep_for(std::chrono::duration<double>(options.duration));
+  phase = kStop;
+  row.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  for (auto& thread : threads) thread.join();
+
+  std::vector<float> all;
+  for (auto& mine : latencies) all.insert(all.end(), mine.begin(), mine.end());
+  std::sort(all.begin(), all.end());
+  row.calls = all.size();
+  row.p50_ms = percentile(all, 0.50);
+  row.p99_ms = percentile(all, 0.99);
+  row.p999_ms = percentile(all, 0.999);
+  row.max_ms = all.empty() ? 0 : all.back() / 1e3;
+  double sum = 0;
+  for (float us : all) sum += us;
+  row.mean_ms = all.empty() ? 0 : sum / all.size() / 1e3;
+  return row;
+}
+
+std::string met(bool ok) { return ok ? "met" : "MISSED"; }
+
+void write_file(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+}
+
+struct ThroughputResult {
+  std::vector<Row> rows;
+  Memory after;
+  bool ok = false;
+};
+
+ThroughputResult throughput(const Options& options) {
+  ThroughputResult result;
+  fs::path dir = fs::path(options.base_dir) / ("acomms_submit_bench_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string socket = (dir / "api.sock").string();
+  write_file(dir / "bench.proto", kBenchProto);
+  std::ostringstream config;
+  config << "data_dir: \"" << (dir / "data").string() << "\"\n"
+         << "grpc { unix_socket: \"" << socket << "\" }\n"
+         << "driver { name: \"sim\" modem_id: 1 }\n"
+         << "mac { name: \"none\" }\n"
+         << "dccl { proto_files: \"" << (dir / "bench.proto").string() << "\" }\n"
+         << "queue { type { type: \"bench.Status\" policy { max_queue: 1000000 on_full: DROP_OLDEST } } }\n";
+  write_file(dir / "acommsd.conf", config.str());
+
+  testing::ChildProcess daemon(options.acommsd, {"--config", (dir / "acommsd.conf").string()},
+                               (dir / "acommsd").string());
+  if (!testing::wait_serving(daemon, socket)) {
+    std::fprintf(stderr, "submit_bench: acommsd did not start serving:\n%s", daemon.stderr_text().c_str());
+    fs::remove_all(dir);
+    return result;
+  }
+  if (!options.json) {
+    std::printf("acommsd durable Submit: data dir on %s (%s), %.1f s per row after %.1f s warm-up\n",
+                options.base_dir.c_str(), filesystem_name(options.base_dir).c_str(), options.duration,
+                options.warmup);
+    std::printf("%-9s %7s %10s %11s %8s %8s %8s %8s %8s %7s   %s\n", "call", "clients", "calls", "calls/s", "mean_ms",
+                "p50_ms", "p99_ms", "p99.9_ms", "max_ms", "failed", "goals");
+  }
+  bool failed = false;
+  std::vector<std::pair<bool, int>> runs;
+  for (int clients : options.clients) runs.emplace_back(false, clients);
+  if (options.baseline) {
+    for (int clients : options.clients) runs.emplace_back(true, clients);
+  }
+  for (auto [get_status, clients] : runs) {
+    Row row = run_clients(options, socket, clients, get_status);
+    result.rows.push_back(row);
+    failed = failed || row.failed > 0 || row.calls == 0;
+    if (options.json) {
+      std::printf("{\"bench\":\"%s\",\"clients\":%d,\"seconds\":%.3f,\"calls\":%llu,"
+                  "\"calls_per_s\":%.1f,\"mean_ms\":%.4f,\"p50_ms\":%.4f,\"p99_ms\":%.4f,"
+                  "\"p999_ms\":%.4f,\"max_ms\":%.4f,\"failed\":%llu}\n",
+                  get_status ? "get_status" : "submit", row.clients, row.seconds,
+                  static_cast<unsigned long long>(row.calls), row.rate(),
+                  row.mean_ms, row.p50_ms, row.p99_ms, row.p999_ms, row.max_ms,
+                  static_cast<unsigned long long>(row.failed));
+    } else {
+      std::string goals = "p99 < " + std::to_string(static_cast<int>(kGoalP99Ms)) + " ms: " +
+                          met(row.p99_ms < kGoalP99Ms);
+      if (get_status) {
+        goals = "(baseline: gRPC alone)";
+      } else if (clients == kGoalClients) {
+        goals += ", >= 20,000/s: " + met(row.rate() >= kGoalSubmitsPerSecond);
+      }
+      std::printf("%-9s %7d %10llu %11.0f %8.3f %8.3f %8.3f %8.3f %8.3f %7llu   %s\n", row.call.c_str(),
+                  row.clients,
+                  static_cast<unsigned long long>(row.calls), row.rate(), row.mean_ms, row.p50_ms,
+                  row.p99_ms, row.p999_ms, row.max_ms, static_cast<unsigned long long>(row.failed),
+                  goals.c_str());
+    }
+    if (row.failed > 0) {
+      std::fprintf(stderr, "submit_bench: %llu %s calls failed with %d clients; first: %s\n",
+                   static_cast<unsigned long long>(row.failed), row.call.c_str(), clients,
+                   row.first_error.c_str());
+    }
+    std::fflush(stdout);
+  }
+  result.after = memory_of(daemon.pid());
+  if (options.json) {
+    std::printf("{\"bench\":\"rss_after_submits\",\"vm_rss_kb\":%ld,\"vm_hwm_kb\":%ld}\n", result.after.rss_kb,
+                result.after.hwm_kb);
+  } else {
+    std::printf("acommsd after these submits: VmRSS %.1f MB, VmHWM %.1f MB\n", result.after.rss_kb / 1024.0,
+                result.after.hwm_kb / 1024.0);
+  }
+  std::optional<int> code = stop(daemon);
+  if (code != 0) {
+    std::fprintf(stderr, "submit_bench: acommsd did not exit cleanly on SIGTERM (%s):\n%s",
+                 code ? ("exit " + std::to_string(*code)).c_str() : "killed", daemon.stderr_text().c_str());
+    failed = true;
+  }
+  fs::remove_all(dir);
+  result.ok = !failed;
+  return result;
+}
+
+// acommsd started as examples/run.sh starts the vehicle: `acommsd --config
+// examples/vehicle.conf` from a directory holding examples/ (its paths, data
+// dir and socket under var/ and examples/messages.proto, are relative to
+// it), idle for `options.idle` seconds once serving. That directory is a
+// scratch one with examples/ linked to the checkout's, so that the
+// checkout's var/ is left alone.
+bool idle_memory(const Options& options) {
+  fs::path dir = fs::path(options.base_dir) / ("acomms_submit_bench_rss_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "var" / "vehicle");
+  fs::path config = fs::absolute(options.example_config);
+  fs::create_directory_symlink(config.parent_path(), dir / "examples");
+  fs::path here = fs::current_path();
+  // The child inherits the working directory; nothing else runs now.
+  fs::current_path(dir);
+  testing::ChildProcess daemon(options.acommsd, {"--config", "examples/" + config.filename().string()},
+                               (dir / "acommsd").string());
+  fs::current_path(here);
+  std::string socket = (dir / "var" / "vehicle" / "acommsd.sock").string();
+  if (!testing::wait_serving(daemon, socket)) {
+    std::fprintf(stderr, "submit_bench: acommsd (%s) did not start serving:\n%s", config.c_str(),
+                 daemon.stderr_text().c_str());
+    fs::remove_all(dir);
+    return false;
+  }
+  std::this_thread::sleep_for(std::chrono::duration<double>(options.idle));
+  Memory memory = memory_of(daemon.pid());
+  if (options.json) {
+    std::printf("{\"bench\":\"idle_rss\",\"config\":\"%s\",\"idle_s\":%.1f,\"vm_rss_kb\":%ld,\"vm_hwm_kb\":%ld}\n",
+                config.c_str(), options.idle, memory.rss_kb, memory.hwm_kb);
+  } else {
+    std::printf("acommsd idle %.1f s on %s: VmRSS %.1f MB, VmHWM %.1f MB   goal RSS < %.0f MB: %s\n",
+                options.idle, options.example_config.c_str(), memory.rss_kb / 1024.0, memory.hwm_kb / 1024.0,
+                kGoalIdleRssMb, met(memory.rss_kb >= 0 && memory.rss_kb < kGoalIdleRssMb * 1024).c_str());
+  }
+  std::fflush(stdout);
+  std::optional<int> code = stop(daemon);
+  fs::remove_all(dir);
+  if (code != 0) {
+    std::fprintf(stderr, "submit_bench: idle acommsd did not exit cleanly on SIGTERM:\n%s",
+                 daemon.stderr_text().c_str());
+    return false;
+  }
+  return memory.rss_kb >= 0;
+}
+
+std::vector<int> parse_list(const std::string& text) {
+  std::vector<int> values;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) values.push_back(std::stoi(item));
+  return values;
+}
+
+[[noreturn]] void usage() {
+  std::fprintf(stderr,
+               "usage: submit_bench [--duration S] [--warmup S] [--clients 1,8] [--idle S] [--dir D]\n"
+               "                    [--acommsd PATH] [--example-config PATH] [--json] [--no-rss] [--baseline]\n");
+  std::exit(2);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    std::string value;
+    bool has_value = false;
+    if (auto eq = arg.find('='); arg.rfind("--", 0) == 0 && eq != std::string::npos) {
+      value = arg.substr(eq + 1);
+      arg = arg.substr(0, eq);
+      has_value = true;
+    }
+    auto next = [&]() -> std::string {
+      if (has_value) return value;
+      if (i + 1 >= argc) usage();
+      return argv[++i];
+    };
+    try {
+      if (arg == "--duration") options.duration = std::stod(next());
+      else if (arg == "--warmup") options.warmup = std::stod(next());
+      else if (arg == "--idle") options.idle = std::stod(next());
+      else if (arg == "--clients") options.clients = parse_list(next());
+      else if (arg == "--dir") options.base_dir = next();
+      else if (arg == "--acommsd") options.acommsd = next();
+      else if (arg == "--example-config") options.example_config = next();
+      else if (arg == "--json") options.json = true;
+      else if (arg == "--no-rss") options.rss = false;
+      else if (arg == "--baseline") options.baseline = true;
+      else usage();
+    } catch (const std::logic_error&) {
+      usage();
+    }
+  }
+  // A short run (the ctest smoke) keeps warm-up and idle time short too.
+  if (options.duration < 1) {
+    options.warmup = std::min(options.warmup, options.duration / 2);
+    options.idle = std::min(options.idle, 1.0);
+  }
+
+  ThroughputResult result = throughput(options);
+  bool ok = result.ok;
+  if (options.rss) ok = idle_memory(options) && ok;
+  return ok ? 0 : 1;
+}
