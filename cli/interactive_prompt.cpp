@@ -6,6 +6,7 @@
 #include <ostream>
 #include <string>
 
+#include "dccl/message_json.h"
 #include "message_builder.h"
 #include "output.h"
 #include "rpc_error.h"
@@ -220,11 +221,8 @@ std::unique_ptr<gp::Message> prompt_message(TypeSchema& schema, const PromptStre
 }
 
 bool confirm_send(const gp::Message& message, const PromptStreams& streams) {
-  gp::util::JsonPrintOptions options;
-  options.preserve_proto_field_names = true;
-  options.add_whitespace = true;
-  std::string json;
-  (void)gp::util::MessageToJsonString(message, &json, options);
+  // Partial-safe: required fields the daemon fills (source, time) are unset here.
+  std::string json = dccl::to_json(message, /*pretty=*/true);
   streams.out << json << (json.empty() || json.back() != '\n' ? "\n" : "") << "send? [y/N] " << std::flush;
   std::string answer;
   if (!read_line(streams, &answer)) return false;

@@ -49,7 +49,7 @@ std::optional<std::string> payload_from_prompt(ApiClient& client, const SendOpti
     if (!std::cin) throw UsageError("input ended before the answer to \"send?\"");
     return std::nullopt;
   }
-  return message->SerializeAsString();
+  return message->SerializePartialAsString();
 }
 
 // `send T x=1 --json` means "answer in JSON": CLI11 hands the option the

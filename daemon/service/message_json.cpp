@@ -2,8 +2,6 @@
 
 #include <google/protobuf/descriptor.pb.h>
 #include <google/protobuf/util/json_util.h>
-#include <google/protobuf/util/type_resolver.h>
-#include <google/protobuf/util/type_resolver_util.h>
 
 #include <memory>
 
@@ -22,27 +20,6 @@ void make_optional(pb::DescriptorProto* type) {
 }
 
 }  // namespace
-
-std::string to_json(const pb::Message& message) {
-  // Through the binary form: MessageToJsonString insists on required
-  // fields, and a decoded message may lack one legitimately (a field with
-  // (dccl.field).omit is never sent).
-  static constexpr const char* kUrlPrefix = "type.googleapis.com";
-  const pb::Descriptor* type = message.GetDescriptor();
-  std::unique_ptr<pb::util::TypeResolver> resolver(
-      pb::util::NewTypeResolverForDescriptorPool(kUrlPrefix, type->file()->pool()));
-  pb::util::JsonPrintOptions options;
-  options.preserve_proto_field_names = true;
-  std::string json;
-  if (!pb::util::BinaryToJsonString(resolver.get(), std::string(kUrlPrefix) + "/" + type->full_name(),
-                                    message.SerializePartialAsString(), &json, options)
-           .ok()) {
-    // Only possible for messages JSON cannot express (e.g. unresolvable Any);
-    // DCCL types have none, so say so rather than fail the whole call.
-    return "{}";
-  }
-  return json;
-}
 
 void JsonReader::add_file(const pb::FileDescriptor* file) {
   if (pool_.FindFileByName(file->name()) != nullptr) return;

@@ -1,6 +1,5 @@
 #pragma once
-// Messages as JSON for clients: proto field names (as in the .proto, which
-// is what operators read), defaults left out.
+// Messages to and from JSON for clients (to_json: see dccl/message_json.h).
 
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/dynamic_message.h>
@@ -9,9 +8,11 @@
 #include <mutex>
 #include <string>
 
+#include "dccl/message_json.h"
+
 namespace acomms::service {
 
-std::string to_json(const google::protobuf::Message& message);
+using dccl::to_json;
 
 // Parses JSON into DCCL messages without insisting on their required
 // fields: a Submit may leave out the fields the queue's roles fill in
