@@ -297,6 +297,17 @@ TEST_F(AcommsctlApi, InteractiveSendAnsweredNoSendsNothing) {
   EXPECT_EQ(queued().messages_size(), 0);
 }
 
+TEST_F(AcommsctlApi, InteractiveSendMayLeaveRequiredFieldsToTheDaemon) {
+  // depth (required) left empty: the preview still shows the message, and
+  // the daemon, not the prompt, names what is missing.
+  RunResult result = ctl({"send", "ctltest.VehicleStatus", "--interactive"}, "3\n\n\n\n\n\n\n\ny\n");
+  EXPECT_EQ(result.exit_code, 1) << result.err;
+  EXPECT_NE(result.err.find("\"src\": 3"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("acommsctl: INVALID_ARGUMENT: "), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("required field(s) missing: depth"), std::string::npos) << result.err;
+  EXPECT_EQ(queued().messages_size(), 0);
+}
+
 // ------------------------------------------------------------------ queue
 
 TEST_F(AcommsctlApi, CancelRemovesTheMessageAndTheEventLogSaysSo) {
