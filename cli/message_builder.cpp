@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "api_client.h"
+#include "comma_list.h"
+#include "dccl/hex.h"
 #include "output.h"
 #include "rpc_error.h"
 
@@ -27,18 +29,6 @@ class FirstError : public gp::DescriptorPool::ErrorCollector {
   }
   std::string first;
 };
-
-std::vector<std::string> split_commas(const std::string& text) {
-  std::vector<std::string> items;
-  if (text.empty()) return items;  // "" is an empty list, not one empty item
-  size_t begin = 0;
-  while (true) {
-    size_t end = text.find(',', begin);
-    items.push_back(text.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
-    if (end == std::string::npos) return items;
-    begin = end + 1;
-  }
-}
 
 template <typename T>
 T parse_integer(const std::string& text) {
@@ -77,26 +67,15 @@ bool parse_bool(const std::string& text) {
   throw UsageError("\"" + text + "\" is not true or false");
 }
 
-int hex_digit(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
-
 std::string parse_hex(const std::string& text) {
   if (text.rfind("0x", 0) != 0 && text.rfind("0X", 0) != 0) {
     throw UsageError("bytes are written in hex with a 0x prefix, e.g. 0x0a1b");
   }
-  std::string digits = text.substr(2);
-  if (digits.size() % 2 != 0) throw UsageError("\"" + text + "\" has an odd number of hex digits");
-  std::string bytes;
-  for (size_t i = 0; i < digits.size(); i += 2) {
-    int high = hex_digit(digits[i]), low = hex_digit(digits[i + 1]);
-    if (high < 0 || low < 0) throw UsageError("\"" + text + "\" is not hex");
-    bytes.push_back(static_cast<char>(high * 16 + low));
+  try {
+    return dccl::from_hex(std::string_view(text).substr(2));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("\"" + text + "\" is not hex: " + e.what());
   }
-  return bytes;
 }
 
 const gp::EnumValueDescriptor* parse_enum(const gp::EnumDescriptor* type, const std::string& text) {
@@ -306,7 +285,10 @@ void set_field(gp::Message& message, const gp::FieldDescriptor* field, const std
   // Parse everything before touching the field, so a bad element leaves
   // the previous value.
   std::unique_ptr<gp::Message> scratch(message.New());
-  for (const std::string& item : split_commas(text)) put_scalar(*scratch, field, item);
+  // "" is an empty list, not one empty item.
+  if (!text.empty()) {
+    for (const std::string& item : split_commas(text)) put_scalar(*scratch, field, item);
+  }
   message.GetReflection()->ClearField(&message, field);
   message.GetReflection()->SwapFields(&message, scratch.get(), {field});
 }

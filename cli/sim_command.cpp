@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "comma_list.h"
 #include "global_options.h"
 #include "mac/discovery_simulation.h"
 #include "queue/market_simulation.h"
@@ -52,19 +53,6 @@ void add_queue_market_command(CLI::App* sim) {
   });
 }
 
-
-// "a,b,,c" -> "a", "b", "", "c" (an empty token is the caller's to refuse).
-std::vector<std::string> split_commas(const std::string& text) {
-  std::vector<std::string> tokens;
-  size_t begin = 0;
-  while (begin <= text.size()) {
-    size_t end = text.find(',', begin);
-    if (end == std::string::npos) end = text.size();
-    tokens.push_back(text.substr(begin, end - begin));
-    begin = end + 1;
-  }
-  return tokens;
-}
 
 // "3-6,8" -> 3,4,5,6,8. "n+1" (when allowed) -> 0, standing for the network
 // size + 1.
