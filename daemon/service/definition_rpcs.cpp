@@ -5,6 +5,7 @@
 #include <set>
 
 #include "service/acomms_service.h"
+#include "service/rpc_status.h"
 
 namespace acomms::service {
 namespace {
@@ -87,7 +88,7 @@ grpc::Status AcommsService::ListTypes(grpc::ServerContext*, const v1::ListTypesR
   }
   for (const std::string& name : request->types()) {
     const dccl::TypeInfo* info = parts_.codec.find_type(name);
-    if (info == nullptr) return {grpc::StatusCode::NOT_FOUND, "no DCCL type \"" + name + "\" is loaded"};
+    if (info == nullptr) return type_not_loaded(name);
     fill_type(*info, request->fields(), request->descriptors(), response->add_types());
   }
   return grpc::Status::OK;

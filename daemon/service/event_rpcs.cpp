@@ -2,19 +2,15 @@
 #include <cmath>
 
 #include "service/acomms_service.h"
+#include "service/rpc_status.h"
 
 namespace acomms::service {
-namespace {
-
-constexpr uint32_t kDefaultLimit = 1000;
-constexpr uint32_t kMaxLimit = 10000;
-
-}  // namespace
 
 grpc::Status AcommsService::Events(grpc::ServerContext*, const v1::EventsRequest* request,
                                    v1::EventsResponse* response) {
   using grpc::StatusCode;
-  if (request->limit() > kMaxLimit) return {StatusCode::INVALID_ARGUMENT, "limit is at most " + std::to_string(kMaxLimit)};
+  size_t limit = 0;
+  if (grpc::Status refused = page_limit(request->limit(), &limit); !refused.ok()) return refused;
   if (!std::isfinite(request->since()) || !std::isfinite(request->until()) || request->since() < 0 ||
       request->until() < 0) {
     return {StatusCode::INVALID_ARGUMENT, "since and until are seconds since the Unix epoch (0: unbounded)"};
@@ -31,7 +27,7 @@ grpc::Status AcommsService::Events(grpc::ServerContext*, const v1::EventsRequest
   query.kinds.assign(request->kinds().begin(), request->kinds().end());
   query.types.assign(request->types().begin(), request->types().end());
   query.message_id = request->message_id();
-  query.limit = request->limit() ? request->limit() : kDefaultLimit;
+  query.limit = limit;
   queue::EventPage page;
   try {
     page = parts_.events.query(query);

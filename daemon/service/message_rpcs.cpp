@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "service/acomms_service.h"
+#include "service/rpc_status.h"
 #include "service/message_json.h"
 
 namespace acomms::service {
@@ -19,7 +20,7 @@ grpc::Status AcommsService::parse_message(const std::string& type, const std::st
                                           std::unique_ptr<google::protobuf::Message>* out) const {
   using grpc::StatusCode;
   if (parts_.codec.find_type(type) == nullptr) {
-    return {StatusCode::NOT_FOUND, "no DCCL type \"" + type + "\" is loaded"};
+    return type_not_loaded(type);
   }
   if ((payload && payload->size() > kMaxMessageBytes) || (json && json->size() > kMaxMessageBytes)) {
     return {StatusCode::INVALID_ARGUMENT, "message is larger than " + std::to_string(kMaxMessageBytes) + " bytes"};
@@ -122,7 +123,7 @@ grpc::Status AcommsService::Decode(grpc::ServerContext*, const v1::DecodeRequest
       messages = parts_.codec.decode(request->encoded());
     } else {
       if (parts_.codec.find_type(request->type()) == nullptr) {
-        return {grpc::StatusCode::NOT_FOUND, "no DCCL type \"" + request->type() + "\" is loaded"};
+        return type_not_loaded(request->type());
       }
       messages.push_back(parts_.codec.decode_as(request->type(), request->encoded()));
     }

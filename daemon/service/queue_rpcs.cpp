@@ -1,12 +1,10 @@
 // ListQueued, Cancel, Flush and QueueStats: what waits for the link.
 #include "service/acomms_service.h"
 #include "service/message_json.h"
+#include "service/rpc_status.h"
 
 namespace acomms::service {
 namespace {
-
-constexpr uint32_t kDefaultLimit = 1000;
-constexpr uint32_t kMaxLimit = 10000;
 
 v1::QueuePolicy to_proto(const queue::QueuePolicy& policy) {
   v1::QueuePolicy out;
@@ -25,13 +23,11 @@ v1::QueuePolicy to_proto(const queue::QueuePolicy& policy) {
 
 grpc::Status AcommsService::ListQueued(grpc::ServerContext*, const v1::ListQueuedRequest* request,
                                        v1::ListQueuedResponse* response) {
-  if (request->limit() > kMaxLimit) {
-    return {grpc::StatusCode::INVALID_ARGUMENT, "limit is at most " + std::to_string(kMaxLimit)};
-  }
-  const size_t limit = request->limit() ? request->limit() : kDefaultLimit;
+  size_t limit = 0;
+  if (grpc::Status refused = page_limit(request->limit(), &limit); !refused.ok()) return refused;
   std::shared_lock lock(definitions_);
   if (!request->type().empty() && parts_.queues.find_queue(request->type()) == nullptr) {
-    return {grpc::StatusCode::NOT_FOUND, "no queue for type \"" + request->type() + "\""};
+    return no_queue(request->type());
   }
   // Copied on the core thread (cheap), turned into JSON here (not cheap),
   // so a long listing does not hold up the link.
@@ -97,7 +93,7 @@ grpc::Status AcommsService::Flush(grpc::ServerContext*, const v1::FlushRequest* 
     size_t removed = parts_.core.call([&] { return parts_.queues.flush(request->type(), "flushed by client"); });
     response->set_removed(static_cast<uint32_t>(removed));
   } catch (const queue::UnknownTypeError&) {
-    return {grpc::StatusCode::NOT_FOUND, "no queue for type \"" + request->type() + "\""};
+    return no_queue(request->type());
   }
   return grpc::Status::OK;
 }
@@ -107,7 +103,7 @@ grpc::Status AcommsService::QueueStats(grpc::ServerContext*, const v1::QueueStat
   std::shared_lock lock(definitions_);
   for (const std::string& type : request->types()) {
     if (parts_.queues.find_queue(type) == nullptr) {
-      return {grpc::StatusCode::NOT_FOUND, "no queue for type \"" + type + "\""};
+      return no_queue(type);
     }
   }
   std::set<std::string> wanted(request->types().begin(), request->types().end());

@@ -1,5 +1,6 @@
 // Subscribe: received messages streamed to a client.
 #include "service/acomms_service.h"
+#include "service/rpc_status.h"
 
 namespace acomms::service {
 namespace {
@@ -16,7 +17,7 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
     std::shared_lock lock(definitions_);
     for (const std::string& type : request->types()) {
       if (parts_.codec.find_type(type) == nullptr) {
-        return {grpc::StatusCode::NOT_FOUND, "no DCCL type \"" + type + "\" is loaded"};
+        return type_not_loaded(type);
       }
       filter.types.insert(type);
     }
