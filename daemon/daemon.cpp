@@ -139,7 +139,14 @@ void Daemon::stop() {
   definitions_.reset();
   queues_.reset();
   // Every event recorded so far reaches the disk before the store closes.
-  if (writer_) writer_->stop();
+  if (writer_) {
+    writer_->stop();
+    // How well commits were shared: the figure to look at when Submit
+    // throughput or the disk's wear is in question.
+    store::GroupCommitWriter::Stats s = writer_->stats();
+    spdlog::info("store writer: {} writes in {} commits (largest batch {}), {} failed; {:.1f} s committing, {:.1f} s busy",
+                 s.committed, s.batches, s.max_batch, s.failed, s.commit_seconds, s.busy_seconds);
+  }
   journal_.reset();
   writer_.reset();
   codec_.reset();

@@ -2,13 +2,16 @@
 
 namespace acomms::queue {
 
-int64_t MemoryJournal::append(JournalMessage message) {
-  std::lock_guard lock(mutex_);
-  message.id = next_id_++;
-  int64_t id = message.id;
-  events_.push_back(queued_event(message));
-  messages_.emplace(id, std::move(message));
-  return id;
+void MemoryJournal::append(JournalMessage message, Appended appended) {
+  int64_t id = 0;
+  {
+    std::lock_guard lock(mutex_);
+    message.id = next_id_++;
+    id = message.id;
+    events_.push_back(queued_event(message));
+    messages_.emplace(id, std::move(message));
+  }
+  appended(id, nullptr);
 }
 
 void MemoryJournal::record(const QueueEvent& event) {

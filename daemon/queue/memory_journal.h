@@ -12,7 +12,9 @@ namespace acomms::queue {
 
 class MemoryJournal final : public MessageJournal {
  public:
-  int64_t append(JournalMessage message) override;
+  using MessageJournal::append;
+  // `appended` runs at once, on the caller's thread.
+  void append(JournalMessage message, Appended appended) override;
   void record(const QueueEvent& event) override;
   std::vector<JournalMessage> load() override;
   void flush() override {}

@@ -8,6 +8,9 @@
 // ordinary queued messages and are sent again.
 
 #include <cstdint>
+#include <exception>
+#include <functional>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -29,11 +32,33 @@ class MessageJournal {
  public:
   virtual ~MessageJournal() = default;
 
+  // Once an append is durable: its new id and a null error; or id 0 and
+  // why it could not be stored.
+  using Appended = std::function<void(int64_t id, std::exception_ptr error)>;
+
   // Stores `message` durably, with its "queued" event (time submitted_at)
-  // in the same transaction, and returns its new id once committed: one
-  // commit per Submit, not two. Safe from any thread; concurrent calls share
-  // commits (group commit).
-  virtual int64_t append(JournalMessage message) = 0;
+  // in the same transaction: one commit per Submit, not two. Safe from any
+  // thread; concurrent calls share commits (group commit). Does not wait:
+  // `appended` runs once the commit is done, on the journal's own thread
+  // (it must be short, must not wait, and must not append). Appends
+  // complete in the order they were made. Throws if the journal refuses
+  // the write outright (then `appended` never runs).
+  virtual void append(JournalMessage message, Appended appended) = 0;
+
+  // The same, waiting for the commit: returns the id, or throws why the
+  // message was not stored.
+  int64_t append(JournalMessage message) {
+    std::promise<int64_t> stored;
+    std::future<int64_t> id = stored.get_future();
+    append(std::move(message), [&stored](int64_t new_id, std::exception_ptr error) {
+      if (error) {
+        stored.set_exception(error);
+      } else {
+        stored.set_value(new_id);
+      }
+    });
+    return id.get();
+  }
 
   // Logs `event`, and forgets its message when event.removes_message.
   // Asynchronous: never waits for the disk (the core thread calls it), but

@@ -142,6 +142,20 @@ void QueueManager::restore() {
 }
 
 QueuedMessage QueueManager::journal_new(const pb::Message& message, double ttl_s) const {
+  QueuedMessage queued = prepare_new(message, ttl_s);
+  queued.record.id = journal_.append(queued.record);
+  return queued;
+}
+
+void QueueManager::journal_new(const pb::Message& message, double ttl_s, Journaled journaled) const {
+  auto queued = std::make_shared<QueuedMessage>(prepare_new(message, ttl_s));
+  journal_.append(queued->record, [queued, journaled = std::move(journaled)](int64_t id, std::exception_ptr error) {
+    queued->record.id = id;
+    journaled(std::move(*queued), error);
+  });
+}
+
+QueuedMessage QueueManager::prepare_new(const pb::Message& message, double ttl_s) const {
   const std::string& type = message.GetDescriptor()->full_name();
   auto it = by_name_.find(type);
   if (it == by_name_.end()) {
@@ -165,7 +179,6 @@ QueuedMessage QueueManager::journal_new(const pb::Message& message, double ttl_s
   queued.record.dest = state.roles.destination(*filled);
   queued.record.submitted_at = now;
   queued.record.ttl_s = ttl_s;
-  queued.record.id = journal_.append(queued.record);
   return queued;
 }
 

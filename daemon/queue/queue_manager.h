@@ -2,8 +2,8 @@
 // The queues of one node: one per DCCL type, the priority contest between
 // them, frame building, acks, expiry, and the receive side.
 //
-// Threads: journal_new() may run on any thread (it encodes and waits for the
-// journal's commit); everything else runs on the core thread only.
+// Threads: journal_new() may run on any thread (it encodes and hands the
+// message to the journal); everything else runs on the core thread only.
 //
 // The contest, at time t, for each place in a frame: a queue takes part if
 // it is out of blackout, has a message not awaiting an ack, that message
@@ -16,6 +16,8 @@
 #include <google/protobuf/message.h>
 
 #include <cstdint>
+#include <exception>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -76,6 +78,15 @@ class QueueManager {
   // required fields still missing once the roles are filled).
   QueuedMessage journal_new(const google::protobuf::Message& message, double ttl_s = 0) const;
 
+  // The same without waiting for the commit, for callers that must not park
+  // a thread on the disk (the gRPC Submit). Checks and encodes here (and
+  // throws as above); `journaled` then gets the message with its id once it
+  // is durable, or the error that kept it from the disk, on the journal's
+  // thread: it must be short and never wait (hand the message to the core
+  // thread from there). Completions come in the order of the calls.
+  using Journaled = std::function<void(QueuedMessage, std::exception_ptr)>;
+  void journal_new(const google::protobuf::Message& message, double ttl_s, Journaled journaled) const;
+
   // Puts a journaled message in its queue. Returns false when the queue is
   // full and refuses new messages (the message is then dropped, with an
   // event). A full queue that drops its oldest message returns true.
@@ -118,6 +129,10 @@ class QueueManager {
     MessageRoles roles;
     QueueStats stats;
   };
+
+  // journal_new's checks and encoding: the message as it will be queued,
+  // not yet journaled (id 0).
+  QueuedMessage prepare_new(const google::protobuf::Message& message, double ttl_s) const;
 
   struct Contender;
   std::vector<Contender> contenders(double now);

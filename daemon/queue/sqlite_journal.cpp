@@ -40,9 +40,12 @@ void bind_or_null(Statement& statement, int index, int64_t value, int64_t none) 
 
 }  // namespace
 
-int64_t SqliteJournal::append(JournalMessage message) {
-  return writer_
-      .submit([this, message = std::move(message)](Database& db) mutable {
+void SqliteJournal::append(JournalMessage message, Appended appended) {
+  // Set by the work inside the transaction, reported only after the commit:
+  // an id must not reach a client before its message is durable.
+  auto id = std::make_shared<int64_t>(0);
+  writer_.post(
+      [this, id, message = std::move(message)](Database& db) mutable {
         Statement& insert = writer_.prepared(kInsertMessage);
         ResetOnExit reset(insert);
         insert.bind(1, message.type)
@@ -55,9 +58,11 @@ int64_t SqliteJournal::append(JournalMessage message) {
         message.id = static_cast<int64_t>(sqlite3_last_insert_rowid(db.handle()));
         // Its "queued" event rides in the same commit.
         write_event(queued_event(message));
-        return message.id;
-      })
-      .get();
+        *id = message.id;
+      },
+      [id, appended = std::move(appended)](std::exception_ptr error) {
+        appended(error ? 0 : *id, error);
+      });
 }
 
 void SqliteJournal::record(const QueueEvent& event) {

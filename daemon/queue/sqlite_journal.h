@@ -3,11 +3,12 @@
 // store (migrations/0002_queue.sql), written through the store's
 // GroupCommitWriter so that concurrent Submits share one fsync.
 //
-// append() waits for its commit: a Submit is answered only once its message
-// is on disk. record() does not wait (the core thread must never block on the
-// disk); it is queued behind every append() that already returned, and logs
-// the event and forgets the message in one transaction, so a crash can never
-// keep the message and lose the event that removed it, or the reverse.
+// An append is reported once its commit is done: a Submit is answered only
+// once its message is on disk. record() does not wait (the core thread must
+// never block on the disk); it is queued behind every append already made,
+// and logs the event and forgets the message in one transaction, so a crash
+// can never keep the message and lose the event that removed it, or the
+// reverse.
 
 #include "queue/message_journal.h"
 #include "store/group_commit_writer.h"
@@ -20,8 +21,10 @@ class SqliteJournal final : public MessageJournal {
   // outlive the journal.
   explicit SqliteJournal(store::GroupCommitWriter& writer) : writer_(writer) {}
 
-  // Throws store::StoreError when the message could not be stored.
-  int64_t append(JournalMessage message) override;
+  using MessageJournal::append;
+  // `appended` runs on the store writer's thread, right after the commit.
+  // Throws store::StoreError when the writer is stopped.
+  void append(JournalMessage message, Appended appended) override;
   // A failure is logged by the writer: there is no caller to tell.
   void record(const QueueEvent& event) override;
   // Throws store::StoreError when the store cannot be read.

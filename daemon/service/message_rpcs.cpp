@@ -42,51 +42,75 @@ grpc::Status AcommsService::parse_message(const std::string& type, const std::st
   return grpc::Status::OK;
 }
 
-grpc::Status AcommsService::Submit(grpc::ServerContext*, const v1::SubmitRequest* request,
-                                   v1::SubmitResponse* response) {
+grpc::ServerUnaryReactor* AcommsService::Submit(grpc::CallbackServerContext* context,
+                                                const v1::SubmitRequest* request, v1::SubmitResponse* response) {
+  // The call ends in one of three places: here when the request is refused
+  // before anything is stored; on the store writer's thread when the
+  // message could not be stored; on the core thread once it is queued (or
+  // refused by a full queue). gRPC keeps request and response alive until
+  // Finish.
+  grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  grpc::Status refused = submit_to_journal(*request, response, reactor);
+  if (!refused.ok()) reactor->Finish(refused);
+  return reactor;
+}
+
+grpc::Status AcommsService::submit_to_journal(const v1::SubmitRequest& request, v1::SubmitResponse* response,
+                                              grpc::ServerUnaryReactor* reactor) {
   using grpc::StatusCode;
-  if (!(request->ttl_s() >= 0) || !std::isfinite(request->ttl_s())) {
+  if (!(request.ttl_s() >= 0) || !std::isfinite(request.ttl_s())) {
     return {StatusCode::INVALID_ARGUMENT, "ttl_s must be 0 (the queue's) or a positive number of seconds"};
   }
   std::shared_lock lock(definitions_);
   std::unique_ptr<google::protobuf::Message> message;
   grpc::Status parsed = parse_message(
-      request->type(), request->message_case() == v1::SubmitRequest::kPayload ? &request->payload() : nullptr,
-      request->message_case() == v1::SubmitRequest::kJson ? &request->json() : nullptr, &message);
+      request.type(), request.message_case() == v1::SubmitRequest::kPayload ? &request.payload() : nullptr,
+      request.message_case() == v1::SubmitRequest::kJson ? &request.json() : nullptr, &message);
   if (!parsed.ok()) return parsed;
-  queue::QueuedMessage queued;
   try {
-    // Encoding and the durable write happen here, on this gRPC thread, so
-    // concurrent submits share commits and the core thread never waits on
-    // the disk.
-    queued = parts_.queues.journal_new(*message, request->ttl_s());
+    // Encoding happens here, on this gRPC thread; the write is shared with
+    // the other Submits of the same commit, and nothing waits for the disk.
+    parts_.queues.journal_new(
+        *message, request.ttl_s(),
+        [this, response, reactor](queue::QueuedMessage queued, std::exception_ptr error) {
+          // On the store writer's thread: hand on quickly, never wait.
+          if (error) {
+            try {
+              std::rethrow_exception(error);
+            } catch (const std::exception& e) {
+              reactor->Finish({StatusCode::UNAVAILABLE, std::string("store: ") + e.what()});
+            }
+            return;
+          }
+          auto durable = std::make_shared<queue::QueuedMessage>(std::move(queued));
+          parts_.core.post([this, durable, response, reactor] {
+            accept_submitted(std::move(*durable), response, reactor);
+          });
+        });
   } catch (const queue::UnknownTypeError& e) {
     return {StatusCode::NOT_FOUND, e.what()};
   } catch (const dccl::Error& e) {
     return {StatusCode::INVALID_ARGUMENT, e.what()};
   } catch (const std::exception& e) {
+    // The store writer refused the write: the daemon is stopping.
     return {StatusCode::UNAVAILABLE, std::string("store: ") + e.what()};
   }
-  int64_t id = queued.record.id;
+  return grpc::Status::OK;
+}
+
+void AcommsService::accept_submitted(queue::QueuedMessage queued, v1::SubmitResponse* response,
+                                     grpc::ServerUnaryReactor* reactor) {
+  const int64_t id = queued.record.id;
   const std::string type = queued.record.type;
-  std::optional<uint32_t> refused_at;
-  try {
-    refused_at = parts_.core.call([&]() -> std::optional<uint32_t> {
-      if (parts_.queues.accept(std::move(queued))) return std::nullopt;
-      const queue::Queue* queue = parts_.queues.find_queue(type);
-      return queue ? queue->policy().max_queue : 0;
-    });
-  } catch (const std::exception& e) {
-    // The core stopped under us: the message is journaled and comes back
-    // at the next start.
-    return {StatusCode::UNAVAILABLE, std::string("acommsd is stopping: ") + e.what()};
-  }
-  if (refused_at) {
-    return {StatusCode::RESOURCE_EXHAUSTED,
-            "queue " + type + " is full (max_queue " + std::to_string(*refused_at) + ") and refuses new messages"};
+  if (!parts_.queues.accept(std::move(queued))) {
+    const queue::Queue* queue = parts_.queues.find_queue(type);
+    reactor->Finish({grpc::StatusCode::RESOURCE_EXHAUSTED,
+                     "queue " + type + " is full (max_queue " + std::to_string(queue ? queue->policy().max_queue : 0) +
+                         ") and refuses new messages"});
+    return;
   }
   response->set_message_id(id);
-  return grpc::Status::OK;
+  reactor->Finish(grpc::Status::OK);
 }
 
 grpc::Status AcommsService::Encode(grpc::ServerContext*, const v1::EncodeRequest* request,

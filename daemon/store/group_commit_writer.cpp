@@ -35,6 +35,11 @@ GroupCommitWriter::~GroupCommitWriter() { stop(); }
 
 void GroupCommitWriter::post(Work work) { enqueue(Request{std::move(work), {}}); }
 
+void GroupCommitWriter::post(Work work, Done done) {
+  if (!done) throw StoreError("GroupCommitWriter::post: done must be callable");
+  enqueue(Request{std::move(work), std::move(done)});
+}
+
 void GroupCommitWriter::flush() {
   submit([](Database&) {}).get();
 }
@@ -223,7 +228,13 @@ void GroupCommitWriter::run_batch(std::vector<Request>& batch) {
   }
   for (size_t i = 0; i < n; ++i) {
     if (batch[i].done) {
-      batch[i].done(errors[i]);
+      // A throwing done must not take the writer (and every later write)
+      // down with it.
+      try {
+        batch[i].done(errors[i]);
+      } catch (const std::exception& e) {
+        spdlog::error("store {}: a write's completion failed: {}", db_.path(), e.what());
+      }
     } else if (errors[i]) {
       // A post() has no caller to tell: the log is where it must show.
       spdlog::error("store {}: an asynchronous write was not stored: {}", db_.path(),

@@ -84,6 +84,14 @@ class GroupCommitWriter {
   // logged (it has nobody else to go to). Throws StoreError if stopped.
   void post(Work work);
 
+  // For callers that must not park a thread on the commit: `done` runs on
+  // the writer thread once `work`'s batch is committed (null) or failed (why
+  // not), in the order the requests were queued. It must be short and must
+  // not throw or wait: the next batch waits for it. Throws StoreError if
+  // stopped (then `done` never runs).
+  using Done = std::function<void(std::exception_ptr)>;
+  void post(Work work, Done done);
+
   // Returns once every request queued before the call is committed. Throws
   // StoreError if the last batch failed to commit.
   void flush();
@@ -107,8 +115,8 @@ class GroupCommitWriter {
   struct Request {
     Work work;
     // Called on the writer thread once the request's fate is known: null on
-    // commit, else why it failed. Empty for post().
-    std::function<void(std::exception_ptr)> done;
+    // commit, else why it failed. Empty for a fire-and-forget post().
+    Done done;
   };
 
   void enqueue(Request request);

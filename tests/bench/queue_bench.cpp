@@ -27,7 +27,8 @@ constexpr double kStart = 1'700'000'000;
 // noise, so events go nowhere.
 class NullJournal final : public queue::MessageJournal {
  public:
-  int64_t append(queue::JournalMessage) override { return ++next_id_; }
+  using queue::MessageJournal::append;
+  void append(queue::JournalMessage, Appended appended) override { appended(++next_id_, nullptr); }
   void record(const queue::QueueEvent&) override {}
   std::vector<queue::JournalMessage> load() override { return {}; }
   void flush() override {}

@@ -321,6 +321,13 @@ ThroughputResult throughput(const Options& options) {
     std::fprintf(stderr, "submit_bench: acommsd did not exit cleanly on SIGTERM (%s):\n%s",
                  code ? ("exit " + std::to_string(*code)).c_str() : "killed", daemon.stderr_text().c_str());
     failed = true;
+  } else if (!options.json) {
+    // The daemon's own account of how commits were shared.
+    std::string log = daemon.stderr_text();
+    size_t at = log.find("store writer: ");
+    if (at != std::string::npos) {
+      std::printf("acommsd %s\n", log.substr(at, log.find('\n', at) - at).c_str());
+    }
   }
   fs::remove_all(dir);
   result.ok = !failed;

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <future>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -376,6 +377,99 @@ TEST_F(JournalTest, StopDrainsQueuedWritesThenRefusesMore) {
   EXPECT_THROW(journal().record(removal(1)), StoreError);
   reopen();
   EXPECT_EQ(journal().load().size(), 50u);
+}
+
+// The append a gRPC Submit uses: it must not report an id before the
+// commit, must report it from the writer thread (never the caller's), and
+// must report a failed commit instead of an id.
+struct Reported {
+  std::promise<std::pair<int64_t, std::exception_ptr>> promise;
+  std::thread::id thread;
+  MessageJournal::Appended callback() {
+    return [this](int64_t id, std::exception_ptr error) {
+      thread = std::this_thread::get_id();
+      promise.set_value({id, error});
+    };
+  }
+};
+
+TEST_F(JournalTest, AppendWithoutWaitingReportsTheIdOnlyAfterTheCommit) {
+  Reported reported;
+  auto result = reported.promise.get_future();
+  {
+    WriterGate gate(writer());
+    journal().append(message("async"), reported.callback());
+    EXPECT_EQ(result.wait_for(std::chrono::milliseconds(50)), std::future_status::timeout);
+    gate.open();
+  }
+  auto [id, error] = result.get();
+  EXPECT_EQ(error, nullptr);
+  EXPECT_GT(id, 0);
+  EXPECT_NE(reported.thread, std::this_thread::get_id());
+  std::vector<JournalMessage> stored = journal().load();
+  ASSERT_EQ(stored.size(), 1u);
+  EXPECT_EQ(stored[0].id, id);
+  EXPECT_EQ(stored[0].payload, "async");
+  EXPECT_EQ(count("SELECT count(*) FROM event_log WHERE kind = 'queued' AND message_id = " + std::to_string(id)), 1);
+}
+
+TEST_F(JournalTest, AppendWithoutWaitingReportsAFailedCommitInsteadOfAnId) {
+  exec("CREATE TABLE child (parent_id INTEGER REFERENCES queued_messages(id) DEFERRABLE INITIALLY DEFERRED)");
+  Reported reported;
+  auto result = reported.promise.get_future();
+  {
+    WriterGate gate(writer());
+    auto orphan = writer().submit([](Database& db) { db.exec("INSERT INTO child VALUES (987654)"); });
+    journal().append(message("lost with its batch"), reported.callback());
+    gate.open();
+    EXPECT_THROW(orphan.get(), StoreError);
+  }
+  auto [id, error] = result.get();
+  EXPECT_EQ(id, 0);
+  ASSERT_NE(error, nullptr);
+  EXPECT_THROW(std::rethrow_exception(error), StoreError);
+  EXPECT_TRUE(journal().load().empty());
+}
+
+TEST_F(JournalTest, AppendsWithoutWaitingCompleteInTheOrderMade) {
+  constexpr int kAppends = 200;
+  std::vector<int64_t> ids;
+  std::mutex mutex;
+  std::promise<void> all;
+  for (int i = 0; i < kAppends; ++i) {
+    journal().append(message(std::to_string(i)), [&](int64_t id, std::exception_ptr error) {
+      std::lock_guard lock(mutex);
+      ids.push_back(error ? -1 : id);
+      if (ids.size() == kAppends) all.set_value();
+    });
+  }
+  all.get_future().get();
+  EXPECT_TRUE(std::is_sorted(ids.begin(), ids.end()));
+  EXPECT_EQ(std::set<int64_t>(ids.begin(), ids.end()).size(), static_cast<size_t>(kAppends));
+  EXPECT_GT(ids.front(), 0);
+  std::vector<JournalMessage> stored = journal().load();
+  ASSERT_EQ(stored.size(), static_cast<size_t>(kAppends));
+  for (int i = 0; i < kAppends; ++i) {
+    EXPECT_EQ(stored[i].id, ids[i]);
+    EXPECT_EQ(stored[i].payload, std::to_string(i));
+  }
+}
+
+TEST_F(JournalTest, AThrowingCompletionDoesNotStopTheWriter) {
+  writer().post([](Database&) {}, [](std::exception_ptr) {
+    throw std::runtime_error("completion failed (expected in this test)");
+  });
+  EXPECT_GT(journal().append(message("after")), 0);
+  EXPECT_TRUE(writer().running());
+  EXPECT_THROW(writer().post([](Database&) {}, GroupCommitWriter::Done{}), StoreError);
+}
+
+TEST_F(JournalTest, AppendWithoutWaitingToAStoppedWriterThrowsAndNeverReports) {
+  writer().stop();
+  bool reported = false;
+  EXPECT_THROW(journal().append(message("late"), [&](int64_t, std::exception_ptr) { reported = true; }),
+               StoreError);
+  EXPECT_FALSE(reported);
 }
 
 TEST_F(JournalTest, PreparedIsOnlyForTheWriterThread) {

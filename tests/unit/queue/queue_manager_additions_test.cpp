@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 
 #include "queue/memory_journal.h"
 #include "queue/queue_manager.h"
@@ -313,6 +314,43 @@ TEST_F(QueueAdditionsTest, AddedTypesTakeTheirConfiguredPolicyAndTheDefaults) {
   ASSERT_NE(manager_->find_queue("qb.Extra"), nullptr);
   EXPECT_DOUBLE_EQ(manager_->find_queue("qb.Extra")->policy().ttl_s, 77);
   EXPECT_EQ(manager_->find_queue("qb.Extra")->policy().max_queue, 5u);
+}
+
+
+// The Submit path that does not wait for the disk: the checks and encoding
+// happen on the caller's thread (errors thrown there, nothing journaled),
+// the message comes back with its id once journaled.
+TEST_F(QueueAdditionsTest, JournalNewWithoutWaitingHandsBackTheJournaledMessage) {
+  QueueManager& queues = make();
+  auto m = codec_.new_message("qa.Status");
+  ASSERT_TRUE(pb::TextFormat::ParseFromString("dest: 3 value: 7", m.get()));
+  std::optional<QueuedMessage> journaled;
+  std::exception_ptr failure;
+  queues.journal_new(*m, 12, [&](QueuedMessage queued, std::exception_ptr error) {
+    journaled = std::move(queued);
+    failure = error;
+  });
+  ASSERT_TRUE(journaled);  // MemoryJournal reports at once
+  EXPECT_EQ(failure, nullptr);
+  EXPECT_GT(journaled->record.id, 0);
+  EXPECT_EQ(journaled->record.src, kOwnId);  // source role filled
+  EXPECT_EQ(journaled->record.dest, 3);
+  EXPECT_EQ(journaled->record.ttl_s, 12);
+  EXPECT_EQ(journaled->encoded, encode("qa.Status", "src: 1 dest: 3 value: 7"));
+  EXPECT_EQ(journal_.stored(), 1u);
+  int64_t id = journaled->record.id;
+  EXPECT_TRUE(queues.accept(std::move(*journaled)));
+  EXPECT_EQ(queues.find_queue("qa.Status")->size(), 1u);
+
+  codec_.set_strict(true);  // as the daemon runs by default
+  auto bad = codec_.new_message("qa.Status");
+  ASSERT_TRUE(pb::TextFormat::ParseFromString("value: 5000", bad.get()));
+  bool called = false;
+  EXPECT_THROW(queues.journal_new(*bad, 0, [&](QueuedMessage, std::exception_ptr) { called = true; }),
+               dccl::Error);
+  EXPECT_FALSE(called);
+  EXPECT_EQ(journal_.stored(), 1u);
+  EXPECT_GT(submit("qa.Status", "value: 1"), id);
 }
 
 }  // namespace
