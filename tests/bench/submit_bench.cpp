@@ -2,10 +2,16 @@
 // second and per-call latency (p50, p99) with 1 and 8 concurrent clients, and
 // the daemon's resident memory when idle on examples/vehicle.conf.
 //
-// Each client is a thread with its own gRPC channel (its own connection) on
-// the unix socket, calling Submit synchronously in a loop; every call is
-// answered only once its message is durably in SQLite (WAL, synchronous=FULL,
-// group commit). The daemon runs the sim driver with mac "none", so nothing
+// Each client has its own gRPC channel (its own connection) on the unix
+// socket and keeps exactly one Submit in flight: it sends the next only once
+// the last is answered, and every call is answered only once its message is
+// durably in SQLite (WAL, synchronous=FULL, group commit). By default one
+// event thread drives all the clients through a completion queue, as load
+// generators such as wrk do, so that on a small machine the load generator
+// takes as little CPU from the daemon as it can; --client-threads gives each
+// client its own thread making blocking calls instead (the way most
+// integrations call), which on 2 cores measures the client as much as the
+// daemon. The daemon runs the sim driver with mac "none", so nothing
 // is ever sent, and one DCCL type whose queue drops its oldest message
 // instead of refusing (max_queue 1,000,000): no submit is refused.
 //
@@ -16,6 +22,7 @@
 //
 //   build/tests/bench/submit_bench [--duration 5] [--warmup 1] [--clients 1,8]
 //                                  [--idle 3] [--dir /tmp] [--json] [--no-rss] [--baseline]
+//                                  [--client-threads]
 //   --baseline also times GetStatus the same way: the gRPC round trip alone.
 
 #include <grpcpp/grpcpp.h>
@@ -67,6 +74,8 @@ struct Options {
   // Also time GetStatus (no store, no core thread): what the gRPC round trip
   // alone costs, the ceiling under any Submit figure.
   bool baseline = false;
+  // One thread per client, blocking calls, instead of one event thread.
+  bool client_threads = false;
 };
 
 constexpr const char* kBenchProto = R"(syntax = "proto2";
@@ -143,9 +152,13 @@ double percentile(const std::vector<float>& sorted_us, double p) {
   return sorted_us[std::clamp<size_t>(rank, 1, sorted_us.size()) - 1] / 1e3;
 }
 
+void summarise(const std::vector<std::vector<float>>& latencies, Row* row);
+std::shared_ptr<grpc::Channel> client_channel(const std::string& socket);
+std::string status_json(uint32_t seq, int client);
+
 // `clients` threads, each with its own channel, submitting for warm-up then
 // for the measured duration. Only calls started in the measured window count.
-Row run_clients(const Options& options, const std::string& socket, int clients, bool get_status) {
+Row run_clients_on_threads(const Options& options, const std::string& socket, int clients, bool get_status) {
   enum Phase { kWarmup, kMeasure, kStop };
   std::atomic<int> phase{kWarmup};
   std::atomic<int> connected{0};
@@ -158,12 +171,7 @@ Row run_clients(const Options& options, const std::string& socket, int clients, 
   std::vector<std::thread> threads;
   for (int c = 0; c < clients; ++c) {
     threads.emplace_back([&, c] {
-      grpc::ChannelArguments args;
-      // Channels with equal arguments would otherwise share one connection.
-      args.SetInt(GRPC_ARG_USE_LOCAL_SUBCHANNEL_POOL, 1);
-      auto channel = grpc::CreateCustomChannel("unix:" + socket, grpc::InsecureChannelCredentials(), args);
-      channel->WaitForConnected(std::chrono::system_clock::now() + 10s);
-      auto stub = v1::Acomms::NewStub(channel);
+      auto stub = v1::Acomms::NewStub(client_channel(socket));
       std::vector<float>& mine = latencies[c];
       mine.reserve(1 << 18);
       uint64_t failed = 0;
@@ -177,9 +185,7 @@ Row run_clients(const Options& options, const std::string& socket, int clients, 
       for (uint32_t seq = 0;; ++seq) {
         int now_phase = phase.load(std::memory_order_relaxed);
         if (now_phase == kStop) break;
-        request.set_json("{\"seq\":" + std::to_string(seq % 65536) + ",\"depth\":" +
-                         std::to_string((seq * 7 + c) % 1000) + ".5,\"battery\":" +
-                         std::to_string(seq % 101) + "}");
+        request.set_json(status_json(seq, c));
         grpc::ClientContext context;
         context.set_deadline(std::chrono::system_clock::now() + 10s);
         auto start = Clock::now();
@@ -211,7 +217,118 @@ Row run_clients(const Options& options, const std::string& socket, int clients, 
   phase = kStop;
   row.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   for (auto& thread : threads) thread.join();
+  summarise(latencies, &row);
+  return row;
+}
 
+// A channel of its own (its own connection) for each client.
+std::shared_ptr<grpc::Channel> client_channel(const std::string& socket) {
+  grpc::ChannelArguments args;
+  // Channels with equal arguments would otherwise share one connection.
+  args.SetInt(GRPC_ARG_USE_LOCAL_SUBCHANNEL_POOL, 1);
+  auto channel = grpc::CreateCustomChannel("unix:" + socket, grpc::InsecureChannelCredentials(), args);
+  channel->WaitForConnected(std::chrono::system_clock::now() + 10s);
+  return channel;
+}
+
+// The message a client sends as its seq-th: JSON, as a script would.
+std::string status_json(uint32_t seq, int client) {
+  return "{\"seq\":" + std::to_string(seq % 65536) + ",\"depth\":" + std::to_string((seq * 7 + client) % 1000) +
+         ".5,\"battery\":" + std::to_string(seq % 101) + "}";
+}
+
+// The same clients driven by one thread: each client's next call starts
+// from the completion of its last one.
+Row run_clients_on_events(const Options& options, const std::string& socket, int clients, bool get_status) {
+  enum Phase { kWarmup, kMeasure, kStop };
+  struct Client {
+    int index = 0;
+    std::unique_ptr<v1::Acomms::Stub> stub;
+    uint32_t seq = 0;
+    std::unique_ptr<grpc::ClientContext> context;
+    v1::SubmitRequest request;
+    v1::SubmitResponse response;
+    v1::GetStatusRequest status_request;
+    v1::Status status_response;
+    grpc::Status status;
+    std::unique_ptr<grpc::ClientAsyncResponseReader<v1::SubmitResponse>> submit;
+    std::unique_ptr<grpc::ClientAsyncResponseReader<v1::Status>> get_status;
+    Clock::time_point start;
+    bool measured = false;
+    std::vector<float> latencies;
+  };
+  Row row;
+  row.call = get_status ? "GetStatus" : "Submit";
+  row.clients = clients;
+  grpc::CompletionQueue queue;
+  std::vector<Client> all(clients);
+  for (int c = 0; c < clients; ++c) {
+    all[c].index = c;
+    all[c].stub = v1::Acomms::NewStub(client_channel(socket));
+    all[c].request.set_type("bench.Status");
+    all[c].latencies.reserve(1 << 18);
+  }
+  std::atomic<int> phase{kWarmup};
+  auto start_call = [&](Client& client) {
+    client.context = std::make_unique<grpc::ClientContext>();
+    client.context->set_deadline(std::chrono::system_clock::now() + 10s);
+    client.measured = phase.load(std::memory_order_relaxed) == kMeasure;
+    if (get_status) {
+      client.start = Clock::now();
+      client.get_status = client.stub->AsyncGetStatus(client.context.get(), client.status_request, &queue);
+      client.get_status->Finish(&client.status_response, &client.status, &client);
+    } else {
+      client.request.set_json(status_json(client.seq++, client.index));
+      client.start = Clock::now();
+      client.submit = client.stub->AsyncSubmit(client.context.get(), client.request, &queue);
+      client.submit->Finish(&client.response, &client.status, &client);
+    }
+  };
+  std::thread driver([&] {
+    for (Client& client : all) start_call(client);
+    int in_flight = clients;
+    void* tag = nullptr;
+    bool ok = false;
+    while (in_flight > 0 && queue.Next(&tag, &ok)) {
+      Client& client = *static_cast<Client*>(tag);
+      auto elapsed = Clock::now() - client.start;
+      if (!ok || !client.status.ok()) {
+        ++row.failed;
+        if (row.first_error.empty()) {
+          row.first_error = ok ? "code " + std::to_string(client.status.error_code()) + ": " +
+                                     client.status.error_message()
+                               : "the completion queue reported a failed call";
+        }
+      } else if (client.measured) {
+        client.latencies.push_back(std::chrono::duration<float, std::micro>(elapsed).count());
+      }
+      if (phase.load(std::memory_order_relaxed) == kStop) {
+        --in_flight;
+      } else {
+        start_call(client);
+      }
+    }
+  });
+  std::this_thread::sleep_for(std::chrono::duration<double>(options.warmup));
+  auto start = Clock::now();
+  phase = kMeasure;
+  std::this_thread::sleep_for(std::chrono::duration<double>(options.duration));
+  phase = kStop;
+  row.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  driver.join();
+  queue.Shutdown();
+  void* tag = nullptr;
+  bool ok = false;
+  while (queue.Next(&tag, &ok)) {
+  }
+  std::vector<std::vector<float>> latencies;
+  for (Client& client : all) latencies.push_back(std::move(client.latencies));
+  summarise(latencies, &row);
+  return row;
+}
+
+void summarise(const std::vector<std::vector<float>>& latencies, Row* out) {
+  Row& row = *out;
   std::vector<float> all;
   for (auto& mine : latencies) all.insert(all.end(), mine.begin(), mine.end());
   std::sort(all.begin(), all.end());
@@ -223,7 +340,6 @@ Row run_clients(const Options& options, const std::string& socket, int clients, 
   double sum = 0;
   for (float us : all) sum += us;
   row.mean_ms = all.empty() ? 0 : sum / all.size() / 1e3;
-  return row;
 }
 
 std::string met(bool ok) { return ok ? "met" : "MISSED"; }
@@ -263,9 +379,12 @@ ThroughputResult throughput(const Options& options) {
     return result;
   }
   if (!options.json) {
-    std::printf("acommsd durable Submit: data dir on %s (%s), %.1f s per row after %.1f s warm-up\n",
+    std::printf("acommsd durable Submit: data dir on %s (%s), %.1f s per row after %.1f s warm-up;\n"
+                "each client one connection with one call in flight, %s\n",
                 options.base_dir.c_str(), filesystem_name(options.base_dir).c_str(), options.duration,
-                options.warmup);
+                options.warmup,
+                options.client_threads ? "one thread per client (blocking calls)"
+                                       : "all driven by one event thread");
     std::printf("%-9s %7s %10s %11s %8s %8s %8s %8s %8s %7s   %s\n", "call", "clients", "calls", "calls/s", "mean_ms",
                 "p50_ms", "p99_ms", "p99.9_ms", "max_ms", "failed", "goals");
   }
@@ -276,17 +395,18 @@ ThroughputResult throughput(const Options& options) {
     for (int clients : options.clients) runs.emplace_back(true, clients);
   }
   for (auto [get_status, clients] : runs) {
-    Row row = run_clients(options, socket, clients, get_status);
+    Row row = options.client_threads ? run_clients_on_threads(options, socket, clients, get_status)
+                                     : run_clients_on_events(options, socket, clients, get_status);
     result.rows.push_back(row);
     failed = failed || row.failed > 0 || row.calls == 0;
     if (options.json) {
       std::printf("{\"bench\":\"%s\",\"clients\":%d,\"seconds\":%.3f,\"calls\":%llu,"
                   "\"calls_per_s\":%.1f,\"mean_ms\":%.4f,\"p50_ms\":%.4f,\"p99_ms\":%.4f,"
-                  "\"p999_ms\":%.4f,\"max_ms\":%.4f,\"failed\":%llu}\n",
+                  "\"p999_ms\":%.4f,\"max_ms\":%.4f,\"failed\":%llu,\"client_threads\":%s}\n",
                   get_status ? "get_status" : "submit", row.clients, row.seconds,
                   static_cast<unsigned long long>(row.calls), row.rate(),
                   row.mean_ms, row.p50_ms, row.p99_ms, row.p999_ms, row.max_ms,
-                  static_cast<unsigned long long>(row.failed));
+                  static_cast<unsigned long long>(row.failed), options.client_threads ? "true" : "false");
     } else {
       std::string goals = "p99 < " + std::to_string(static_cast<int>(kGoalP99Ms)) + " ms: " +
                           met(row.p99_ms < kGoalP99Ms);
@@ -391,7 +511,8 @@ std::vector<int> parse_list(const std::string& text) {
 [[noreturn]] void usage() {
   std::fprintf(stderr,
                "usage: submit_bench [--duration S] [--warmup S] [--clients 1,8] [--idle S] [--dir D]\n"
-               "                    [--acommsd PATH] [--example-config PATH] [--json] [--no-rss] [--baseline]\n");
+               "                    [--acommsd PATH] [--example-config PATH] [--json] [--no-rss] [--baseline]\n"
+               "                    [--client-threads]\n");
   std::exit(2);
 }
 
@@ -424,6 +545,7 @@ int main(int argc, char** argv) {
       else if (arg == "--json") options.json = true;
       else if (arg == "--no-rss") options.rss = false;
       else if (arg == "--baseline") options.baseline = true;
+      else if (arg == "--client-threads") options.client_threads = true;
       else usage();
     } catch (const std::logic_error&) {
       usage();
