@@ -1,5 +1,6 @@
 #include "service/grpc_server.h"
 
+#include <absl/synchronization/mutex.h>
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
 #include <spdlog/spdlog.h>
@@ -40,6 +41,12 @@ void clear_stale_socket(const std::string& path) {
 
 GrpcServer::GrpcServer(const Endpoints& endpoints, const std::vector<grpc::Service*>& services)
     : unix_socket_(endpoints.unix_socket) {
+  // Debian's abseil is built without NDEBUG, so absl::Mutex (which gRPC
+  // locks many times per call) keeps its debugging lock-order graph up to
+  // date on every lock, as release builds of abseil do not. Turned off, 8
+  // clients submit about 6% faster; it only ever reported lock-order
+  // cycles, for abseil's own debugging.
+  absl::SetMutexDeadlockDetectionMode(absl::OnDeadlockCycle::kIgnore);
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
 
