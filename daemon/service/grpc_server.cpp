@@ -66,10 +66,11 @@ GrpcServer::GrpcServer(const Endpoints& endpoints, const std::vector<grpc::Servi
     builder.AddListeningPort(endpoints.tcp_listen, grpc::InsecureServerCredentials(), &tcp_port);
   }
   for (grpc::Service* service : services) builder.RegisterService(service);
-  // Every Submit blocks its handler thread until the commit. With gRPC's
-  // default of at most 2 idle pollers, each burst of concurrent calls
-  // creates and destroys threads (thousands a second under load); keeping a
-  // pool of pollers ready cuts the daemon's CPU per Submit by about a third.
+  // The synchronous calls (all but Submit, a callback method that never
+  // holds a thread) each take a thread while they run. With gRPC's default
+  // of at most 2 idle pollers, each burst of concurrent calls creates and
+  // destroys threads (thousands a second under load); a pool kept ready
+  // avoids that.
   builder.SetSyncServerOption(grpc::ServerBuilder::SyncServerOption::MIN_POLLERS, 8);
   builder.SetSyncServerOption(grpc::ServerBuilder::SyncServerOption::MAX_POLLERS, 32);
 
