@@ -153,9 +153,38 @@ double percentile(const std::vector<float>& sorted_us, double p) {
   return sorted_us[std::clamp<size_t>(rank, 1, sorted_us.size()) - 1] / 1e3;
 }
 
-void summarise(const std::vector<std::vector<float>>& latencies, Row* row);
-std::shared_ptr<grpc::Channel> client_channel(const std::string& socket);
-std::string status_json(uint32_t seq, int client);
+// The calls counted and their latencies: mean and percentiles over every
+// client's calls.
+void summarise(const std::vector<std::vector<float>>& latencies, Row* out) {
+  Row& row = *out;
+  std::vector<float> all;
+  for (auto& mine : latencies) all.insert(all.end(), mine.begin(), mine.end());
+  std::sort(all.begin(), all.end());
+  row.calls = all.size();
+  row.p50_ms = percentile(all, 0.50);
+  row.p99_ms = percentile(all, 0.99);
+  row.p999_ms = percentile(all, 0.999);
+  row.max_ms = all.empty() ? 0 : all.back() / 1e3;
+  double sum = 0;
+  for (float us : all) sum += us;
+  row.mean_ms = all.empty() ? 0 : sum / all.size() / 1e3;
+}
+
+// A channel of its own (its own connection) for each client.
+std::shared_ptr<grpc::Channel> client_channel(const std::string& socket) {
+  grpc::ChannelArguments args;
+  // Channels with equal arguments would otherwise share one connection.
+  args.SetInt(GRPC_ARG_USE_LOCAL_SUBCHANNEL_POOL, 1);
+  auto channel = grpc::CreateCustomChannel("unix:" + socket, grpc::InsecureChannelCredentials(), args);
+  channel->WaitForConnected(std::chrono::system_clock::now() + 10s);
+  return channel;
+}
+
+// The message a client sends as its seq-th: JSON, as a script would.
+std::string status_json(uint32_t seq, int client) {
+  return "{\"seq\":" + std::to_string(seq % 65536) + ",\"depth\":" + std::to_string((seq * 7 + client) % 1000) +
+         ".5,\"battery\":" + std::to_string(seq % 101) + "}";
+}
 
 // `clients` threads, each with its own channel, submitting for warm-up then
 // for the measured duration. Only calls started in the measured window count.
@@ -220,22 +249,6 @@ Row run_clients_on_threads(const Options& options, const std::string& socket, in
   for (auto& thread : threads) thread.join();
   summarise(latencies, &row);
   return row;
-}
-
-// A channel of its own (its own connection) for each client.
-std::shared_ptr<grpc::Channel> client_channel(const std::string& socket) {
-  grpc::ChannelArguments args;
-  // Channels with equal arguments would otherwise share one connection.
-  args.SetInt(GRPC_ARG_USE_LOCAL_SUBCHANNEL_POOL, 1);
-  auto channel = grpc::CreateCustomChannel("unix:" + socket, grpc::InsecureChannelCredentials(), args);
-  channel->WaitForConnected(std::chrono::system_clock::now() + 10s);
-  return channel;
-}
-
-// The message a client sends as its seq-th: JSON, as a script would.
-std::string status_json(uint32_t seq, int client) {
-  return "{\"seq\":" + std::to_string(seq % 65536) + ",\"depth\":" + std::to_string((seq * 7 + client) % 1000) +
-         ".5,\"battery\":" + std::to_string(seq % 101) + "}";
 }
 
 // The same clients driven by one thread: each client's next call starts
@@ -326,21 +339,6 @@ Row run_clients_on_events(const Options& options, const std::string& socket, int
   for (Client& client : all) latencies.push_back(std::move(client.latencies));
   summarise(latencies, &row);
   return row;
-}
-
-void summarise(const std::vector<std::vector<float>>& latencies, Row* out) {
-  Row& row = *out;
-  std::vector<float> all;
-  for (auto& mine : latencies) all.insert(all.end(), mine.begin(), mine.end());
-  std::sort(all.begin(), all.end());
-  row.calls = all.size();
-  row.p50_ms = percentile(all, 0.50);
-  row.p99_ms = percentile(all, 0.99);
-  row.p999_ms = percentile(all, 0.999);
-  row.max_ms = all.empty() ? 0 : all.back() / 1e3;
-  double sum = 0;
-  for (float us : all) sum += us;
-  row.mean_ms = all.empty() ? 0 : sum / all.size() / 1e3;
 }
 
 std::string met(bool ok) { return ok ? "met" : "MISSED"; }
