@@ -13,7 +13,6 @@
 //   build/tests/bench/journal_bench [--seconds=2] [--threads=1,8,64,256] [--dir=/tmp]
 //   build/tests/bench/journal_bench --smoke      (what ctest runs: seconds, not figures)
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -30,6 +29,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "fdatasync_probe.h"
 #include "queue/sqlite_journal.h"
 #include "store/group_commit_writer.h"
 #include "store/store.h"
@@ -46,38 +46,6 @@ struct Options {
   std::string base_dir = fs::temp_directory_path().string();
   int fsyncs = 200;
 };
-
-// Mean seconds for one 4 KiB write + fdatasync in `dir`: the floor under
-// every durable commit on this filesystem. Two cases, as a WAL sees them:
-// `extend` appends to a growing file (the WAL before its first checkpoint:
-// the file size changes, so the filesystem journal commits too); otherwise
-// one block is rewritten in place (a WAL reused after a checkpoint).
-double fdatasync_seconds(const std::string& dir, int count, bool extend) {
-  std::string path = dir + "/acomms_fsync_probe_" + std::to_string(::getpid());
-  int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0) {
-    std::perror(path.c_str());
-    std::exit(1);
-  }
-  std::string block(4096, 'x');
-  // In-place: the block exists and is on disk before timing starts.
-  if (!extend && (::pwrite(fd, block.data(), block.size(), 0) < 0 || ::fsync(fd) != 0)) {
-    std::perror(path.c_str());
-    std::exit(1);
-  }
-  auto start = Clock::now();
-  for (int i = 0; i < count; ++i) {
-    off_t offset = extend ? static_cast<off_t>(i) * 4096 : 0;
-    if (::pwrite(fd, block.data(), block.size(), offset) < 0 || ::fdatasync(fd) != 0) {
-      std::perror(path.c_str());
-      std::exit(1);
-    }
-  }
-  double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  ::close(fd);
-  fs::remove(path);
-  return seconds / count;
-}
 
 struct Result {
   int threads = 0;
@@ -169,8 +137,15 @@ int main(int argc, char** argv) {
   }
   spdlog::set_level(spdlog::level::warn);
 
-  double in_place = fdatasync_seconds(options.base_dir, options.fsyncs, false);
-  double extending = fdatasync_seconds(options.base_dir, options.fsyncs, true);
+  double in_place = 0;
+  double extending = 0;
+  try {
+    in_place = bench::fdatasync_seconds(options.base_dir, options.fsyncs, false);
+    extending = bench::fdatasync_seconds(options.base_dir, options.fsyncs, true);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "journal_bench: %s\n", e.what());
+    return 1;
+  }
   std::printf("%s: 4 KiB write + fdatasync: %.3f ms in place, %.3f ms extending the file "
               "(ceilings %.0f and %.0f commits/s)\n",
               options.base_dir.c_str(), in_place * 1e3, extending * 1e3, 1 / in_place,

@@ -49,6 +49,7 @@
 #include "acomms/v1/acomms.grpc.pb.h"
 #include "child_process.h"
 #include "daemon_harness.h"
+#include "fdatasync_probe.h"
 
 namespace {
 
@@ -377,13 +378,28 @@ ThroughputResult throughput(const Options& options) {
     fs::remove_all(dir);
     return result;
   }
-  if (!options.json) {
+  // What the disk alone costs each Submit, so that figures from different
+  // machines can be compared (see the README's Benchmarks section).
+  double fdatasync_ms = -1;
+  try {
+    fdatasync_ms = bench::fdatasync_seconds(options.base_dir, 200, false) * 1e3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "submit_bench: cannot time fdatasync: %s\n", e.what());
+  }
+  if (options.json) {
+    std::printf("{\"bench\":\"fdatasync\",\"dir\":\"%s\",\"in_place_ms\":%s}\n", options.base_dir.c_str(),
+                fdatasync_ms < 0 ? "null" : std::to_string(fdatasync_ms).c_str());
+  } else {
     std::printf("acommsd durable Submit: data dir on %s (%s), %.1f s per row after %.1f s warm-up;\n"
                 "each client one connection with one call in flight, %s\n",
                 options.base_dir.c_str(), filesystem_name(options.base_dir).c_str(), options.duration,
                 options.warmup,
                 options.client_threads ? "one thread per client (blocking calls)"
                                        : "all driven by one event thread");
+    if (fdatasync_ms >= 0) {
+      std::printf("this disk: 4 KiB write + fdatasync in place takes %.3f ms; every Submit waits for at least one\n",
+                  fdatasync_ms);
+    }
     std::printf("%-9s %7s %10s %11s %8s %8s %8s %8s %8s %7s   %s\n", "call", "clients", "calls", "calls/s", "mean_ms",
                 "p50_ms", "p99_ms", "p99.9_ms", "max_ms", "failed", "goals");
   }
