@@ -9,6 +9,7 @@
 #include <chrono>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <unordered_map>
 
 #include "dccl/bitstream.h"
@@ -135,8 +136,10 @@ struct Codec::Impl {
     return abs.filename().string();
   }
 
-  std::unique_ptr<Plan> compile(const gp::Descriptor* type, const MessageOptions& mo,
-                                std::vector<std::string>* errs) {
+  // A plan for type, which comes from `from` (this codec's pool, or a trial
+  // pool whose plans are only checked and thrown away), read with `reader`.
+  std::unique_ptr<Plan> compile(const gp::Descriptor* type, const MessageOptions& mo, const gp::DescriptorPool& from,
+                                OptionReader& reader, std::vector<std::string>* errs) {
     const std::string& name = type->full_name();
     size_t before = errs->size();
     bool version_ok = mo.has_codec_version && mo.codec_version >= 2 && mo.codec_version <= 4;
@@ -154,7 +157,7 @@ struct Codec::Impl {
     if (!version_ok) return nullptr;
 
     auto plan = std::make_unique<Plan>();
-    MessageCompiler compiler(&registry, options.get(), &pool, {mo.codec_version, mo.codec_group});
+    MessageCompiler compiler(&registry, &reader, &from, {mo.codec_version, mo.codec_group});
     compiler.compile_top(type, &plan->head, &plan->body);
     errs->insert(errs->end(), compiler.errors().begin(), compiler.errors().end());
 
@@ -175,8 +178,63 @@ struct Codec::Impl {
                       " bytes, more than max_bytes " + std::to_string(mo.max_bytes));
       return nullptr;
     }
-    plan->prototype = factory.GetPrototype(type);
+    if (&from == &pool) plan->prototype = factory.GetPrototype(type);
     return plan;
+  }
+
+  // Plans for the DCCL messages of `file` not loaded yet, or none and the
+  // reasons in errs. Types already loaded are added to *known instead.
+  std::vector<std::unique_ptr<Plan>> plan_file(const gp::FileDescriptor* file, const gp::DescriptorPool& from,
+                                               OptionReader& reader, std::vector<const TypeInfo*>* known,
+                                               std::vector<std::string>* errs) {
+    std::vector<const gp::Descriptor*> types;
+    for (int i = 0; i < file->message_type_count(); ++i) collect_types(file->message_type(i), &types);
+    std::vector<std::unique_ptr<Plan>> fresh;
+    std::unordered_map<int, std::string> new_ids;
+    for (const gp::Descriptor* type : types) {
+      if (auto it = by_name.find(type->full_name()); it != by_name.end()) {
+        known->push_back(&it->second->info);
+        continue;
+      }
+      MessageOptions mo = reader.message_options(type);
+      if (!mo.present) continue;  // not a DCCL message (may still be embedded)
+      std::unique_ptr<Plan> plan = compile(type, mo, from, reader, errs);
+      if (!plan) continue;
+      if (!plan->info.omit_id) {
+        int id = plan->info.id;
+        std::string other;
+        if (auto it = by_id.find(id); it != by_id.end()) other = it->second->info.name;
+        if (auto it = new_ids.find(id); it != new_ids.end()) other = it->second;
+        if (!other.empty()) {
+          errs->push_back(plan->info.name + ": DCCL id " + std::to_string(id) + " is already used by " + other);
+          continue;
+        }
+        new_ids[id] = plan->info.name;
+      }
+      fresh.push_back(std::move(plan));
+    }
+    return fresh;
+  }
+
+  // A file already built into this codec's pool (loaded, or imported by a
+  // loaded file) stays as it was built: a DescriptorPool cannot replace it.
+  // Reports each file of `file` and its imports, as now on disk, that
+  // differs from the version built.
+  void check_unchanged(const gp::FileDescriptor* file, std::set<std::string>* seen, std::vector<std::string>* errs) {
+    if (!seen->insert(file->name()).second) return;
+    for (int i = 0; i < file->dependency_count(); ++i) check_unchanged(file->dependency(i), seen, errs);
+    if (!pool.InternalIsFileLoaded(file->name())) return;
+    const gp::FileDescriptor* built = pool.FindFileByName(file->name());
+    gp::FileDescriptorProto now;
+    gp::FileDescriptorProto then;
+    file->CopyTo(&now);
+    built->CopyTo(&then);
+    if (now.SerializeAsString() == then.SerializeAsString()) return;
+    std::string name = file->name();
+    std::string disk;
+    if (tree.VirtualFileToDiskFile(name, &disk)) name += " (" + disk + ")";
+    errs->push_back(name + " has changed since it was loaded, and loaded types cannot be replaced in a "
+                    "running process: give the new version another file name, or restart to use it");
   }
 };
 
@@ -235,41 +293,34 @@ std::vector<const TypeInfo*> Codec::load(const std::string& proto_file,
   }
 
   std::string virtual_file = im.virtual_path(proto_file, this);
-  const gp::FileDescriptor* file = im.pool.FindFileByName(virtual_file);
-  if (file == nullptr) {
+  auto fail = [&im, &proto_file] {
     if (im.errors.lines.empty()) im.errors.lines.push_back(proto_file + ": cannot load");
-    throw schema_error(join(im.errors.lines));
-  }
+    return schema_error(join(im.errors.lines));
+  };
 
-  std::vector<const gp::Descriptor*> types;
-  for (int i = 0; i < file->message_type_count(); ++i) collect_types(file->message_type(i), &types);
-
+  // The file is parsed and checked first in a trial pool of its own. This
+  // codec's pool keeps every file it has built, failed DCCL checks or not,
+  // and would hand that version back when the corrected file is loaded.
+  gp::compiler::SourceTreeDescriptorDatabase trial_db(&im.tree, &im.generated_db);
+  trial_db.RecordErrorsTo(&im.errors);
+  gp::DescriptorPool trial(&trial_db, trial_db.GetValidationErrorCollector());
+  const gp::FileDescriptor* trial_file = trial.FindFileByName(virtual_file);
+  if (trial_file == nullptr) throw fail();
   std::vector<std::string> errs;
-  std::vector<std::unique_ptr<Plan>> fresh;
+  std::set<std::string> seen;
+  im.check_unchanged(trial_file, &seen, &errs);
+  if (!errs.empty()) throw schema_error(join(errs));
+  // The reader finds the DCCL options only in a pool that holds them.
+  trial.FindFileByName(kOptionsFile);
+  OptionReader trial_reader(&trial);
+  std::vector<const TypeInfo*> ignored;
+  im.plan_file(trial_file, trial, trial_reader, &ignored, &errs);
+  if (!errs.empty()) throw schema_error(join(errs));
+
+  const gp::FileDescriptor* file = im.pool.FindFileByName(virtual_file);
+  if (file == nullptr) throw fail();
   std::vector<const TypeInfo*> result;
-  std::unordered_map<int, std::string> new_ids;
-  for (const gp::Descriptor* type : types) {
-    if (auto it = im.by_name.find(type->full_name()); it != im.by_name.end()) {
-      result.push_back(&it->second->info);
-      continue;
-    }
-    MessageOptions mo = im.options->message_options(type);
-    if (!mo.present) continue;  // not a DCCL message (may still be embedded)
-    std::unique_ptr<Plan> plan = im.compile(type, mo, &errs);
-    if (!plan) continue;
-    if (!plan->info.omit_id) {
-      int id = plan->info.id;
-      std::string other;
-      if (auto it = im.by_id.find(id); it != im.by_id.end()) other = it->second->info.name;
-      if (auto it = new_ids.find(id); it != new_ids.end()) other = it->second;
-      if (!other.empty()) {
-        errs.push_back(plan->info.name + ": DCCL id " + std::to_string(id) + " is already used by " + other);
-        continue;
-      }
-      new_ids[id] = plan->info.name;
-    }
-    fresh.push_back(std::move(plan));
-  }
+  std::vector<std::unique_ptr<Plan>> fresh = im.plan_file(file, im.pool, *im.options, &result, &errs);
   if (!errs.empty()) throw schema_error(join(errs));
 
   for (std::unique_ptr<Plan>& plan : fresh) {

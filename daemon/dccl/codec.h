@@ -63,7 +63,10 @@ class Codec {
   // or a path relative to an include directory) and returns their infos.
   // Loading is all or nothing: the Error lists every problem, one per line
   // ("file:line:col: text" for .proto syntax, "pkg.Msg.field: rule" for DCCL
-  // rules). Loading a file again is harmless.
+  // rules), and a file that fails leaves no trace, so that its corrected
+  // version loads. Loading an unchanged file again is harmless; a file (or
+  // an import) that changed since it was loaded is refused, because loaded
+  // types cannot be replaced.
   std::vector<const TypeInfo*> load(const std::string& proto_file,
                                     const std::vector<std::string>& include_dirs = {});
 

@@ -261,6 +261,44 @@ TEST_F(DefinitionLoaderTest, FileFixedOnDiskAfterAFailedLoadLoads) {
   EXPECT_EQ(types, std::vector<std::string>{"later.L"});
 }
 
+// A file that parses but breaks a DCCL rule (a numeric field without
+// bounds, the usual slip at sea) is fixed and loaded again, inline under the
+// same name and on disk at the same path.
+TEST_F(DefinitionLoaderTest, DefinitionCorrectedAfterADcclRuleErrorLoads) {
+  std::string unbounded = proto("slip", "S", 44);
+  unbounded.replace(unbounded.find(" [(dccl.field)"), unbounded.find(";\n}") - unbounded.find(" [(dccl.field)"), "");
+  DefinitionError inline_error = error_of([&] { load_inline("slip.proto", unbounded); });
+  EXPECT_EQ(inline_error.code, DefinitionError::Code::kInvalid);
+  EXPECT_NE(std::string(inline_error.what()).find("slip.S.value: numeric field needs"), std::string::npos)
+      << inline_error.what();
+  EXPECT_EQ(load_inline("slip.proto", proto("slip", "S", 44)), std::vector<std::string>{"slip.S"});
+  EXPECT_NE(queues_->find_queue("slip.S"), nullptr);
+
+  std::string on_disk = unbounded;
+  on_disk.replace(on_disk.find("package slip;"), 13, "package disk;");
+  on_disk.replace(on_disk.find("id: 44"), 6, "id: 45");
+  std::ofstream(dir_ / "disk.proto") << on_disk;
+  EXPECT_EQ(error_of([&] { load_path((dir_ / "disk.proto").string()); }).code, DefinitionError::Code::kInvalid);
+  std::ofstream(dir_ / "disk.proto", std::ios::trunc) << proto("disk", "S", 45);
+  EXPECT_EQ(load_path((dir_ / "disk.proto").string()), std::vector<std::string>{"disk.S"});
+  EXPECT_EQ(recorded().size(), 2u);
+}
+
+// A loaded file edited on disk is refused by name, not silently kept in
+// its old form; the loaded version and its record stay.
+TEST_F(DefinitionLoaderTest, FileChangedAfterLoadingIsRefused) {
+  std::string path = (dir_ / "edited.proto").string();
+  std::ofstream(path) << proto("edited", "E", 46, 100);
+  load_path(path);
+  std::ofstream(path, std::ios::trunc) << proto("edited", "E", 46, 1000);
+  DefinitionError e = error_of([&] { load_path(path); });
+  EXPECT_EQ(e.code, DefinitionError::Code::kInvalid);
+  EXPECT_NE(std::string(e.what()).find("edited.proto"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("has changed since it was loaded"), std::string::npos) << e.what();
+  EXPECT_EQ(recorded().size(), 1u);
+  EXPECT_NE(codec_.find_type("edited.E"), nullptr);
+}
+
 TEST_F(DefinitionLoaderTest, AddTypesMakesQueuesOnlyForTheNewTypes) {
   load_inline("one.proto", proto("one", "A", 50));
   ASSERT_EQ(queue_count(), 1u);
