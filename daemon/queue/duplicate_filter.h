@@ -8,7 +8,8 @@
 // is taken as a retransmission and not delivered again. Messages that are
 // meant to repeat identical content within the window must differ in some
 // field (most carry a time), or the window must be shortened (0 turns the
-// filter off).
+// filter off). The filter itself lives in memory; the QueueManager fills it
+// again at start-up from the received events in the event log.
 
 #include <cstdint>
 #include <deque>
@@ -29,11 +30,20 @@ class DuplicateFilter {
   // it and returns false.
   bool seen(int32_t src, std::string_view encoded, double now);
 
+  // Remembers (src, encoded) as received at `time`, as seen() would have:
+  // to fill the filter again at start-up from the event log. Calls must
+  // come in time order, and before any seen().
+  void remember(int32_t src, std::string_view encoded, double time);
+
+  double window_s() const { return window_s_; }
+
  private:
   struct Entry {
     double time;
     std::string key;
   };
+  static std::string key_of(int32_t src, std::string_view encoded);
+  void insert(std::string key, double time);
   void forget_before(double cutoff);
 
   double window_s_;

@@ -27,6 +27,15 @@ std::vector<JournalMessage> MemoryJournal::load() {
   return out;
 }
 
+std::vector<QueueEvent> MemoryJournal::received_since(double since) {
+  std::lock_guard lock(mutex_);
+  std::vector<QueueEvent> out;
+  for (const QueueEvent& event : events_) {
+    if (event.kind == QueueEventKind::kReceived && event.time >= since) out.push_back(event);
+  }
+  return out;
+}
+
 std::vector<QueueEvent> MemoryJournal::events() const {
   std::lock_guard lock(mutex_);
   return events_;

@@ -17,6 +17,7 @@ class MemoryJournal final : public MessageJournal {
   void append(JournalMessage message, Appended appended) override;
   void record(const QueueEvent& event) override;
   std::vector<JournalMessage> load() override;
+  std::vector<QueueEvent> received_since(double since) override;
   void flush() override {}
 
   std::vector<QueueEvent> events() const;

@@ -69,6 +69,11 @@ class MessageJournal {
   // before any append().
   virtual std::vector<JournalMessage> load() = 0;
 
+  // The kReceived events logged at or after `since`, with their encoded
+  // bytes, oldest first: what the duplicate filter must remember again
+  // after a restart. Called at start-up.
+  virtual std::vector<QueueEvent> received_since(double since) = 0;
+
   // Returns once everything recorded so far is committed.
   virtual void flush() = 0;
 };

@@ -34,6 +34,7 @@ struct QueueEvent {
   // expired, dropped, or sent in a frame that asked for no ack): the store
   // forgets the message in the same transaction that logs the event.
   bool removes_message = false;
+  std::string encoded;  // kReceived: the message's DCCL bytes (see DuplicateFilter)
 };
 
 struct JournalMessage;

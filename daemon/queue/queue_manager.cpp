@@ -71,7 +71,8 @@ std::vector<std::string> QueueManager::add_types() {
 }
 
 void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMessage& record, double now,
-                        uint64_t frame_id, const char* detail, bool removes, bool journaled) {
+                        uint64_t frame_id, const char* detail, bool removes, bool journaled,
+                        std::string_view encoded) {
   QueueStats& s = state.stats;
   switch (kind) {
     case QueueEventKind::kQueued: ++s.queued; break;
@@ -92,6 +93,7 @@ void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMess
   event.dest = record.dest;
   event.detail = detail;
   event.removes_message = removes;
+  event.encoded = encoded;
   // Losses are worth an operator's attention; the rest is routine.
   auto level = (kind == QueueEventKind::kDropped || kind == QueueEventKind::kExpired)
                    ? spdlog::level::warn
@@ -114,7 +116,7 @@ void QueueManager::restore() {
     if (it == by_name_.end()) {
       // No queue to put it in: log it against no type, and let it go.
       QueueEvent event{QueueEventKind::kDropped, now, record.type, record.id, 0, record.src, record.dest,
-                       "type no longer loaded", true};
+                       "type no longer loaded", true, {}};
       spdlog::warn("queue: stored message {} of type {} dropped: type no longer loaded", record.id,
                    record.type);
       journal_.record(event);
@@ -139,6 +141,16 @@ void QueueManager::restore() {
     ++restored;
   }
   spdlog::info("queue: {} message{} restored from the store", restored, restored == 1 ? "" : "s");
+
+  // A sender whose ACK was lost while this node was down sends again; what
+  // was passed on before the restart must still count as seen.
+  if (duplicate_filter_.window_s() > 0) {
+    std::vector<QueueEvent> received = journal_.received_since(now - duplicate_filter_.window_s());
+    for (const QueueEvent& event : received) duplicate_filter_.remember(event.src, event.encoded, event.time);
+    spdlog::info("queue: {} message{} received in the last {} s remembered, so that retransmissions of them "
+                 "are not passed on again", received.size(), received.size() == 1 ? "" : "s",
+                 duplicate_filter_.window_s());
+  }
 }
 
 QueuedMessage QueueManager::journal_new(const pb::Message& message, double ttl_s) const {
@@ -366,7 +378,7 @@ std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32
       JournalMessage as_event;
       as_event.src = received.src;
       as_event.dest = received.dest;
-      emit(QueueEventKind::kReceived, state, as_event, now, 0, "", false);
+      emit(QueueEventKind::kReceived, state, as_event, now, 0, "", false, false, received.encoded);
       out.push_back(std::move(received));
     } catch (const dccl::Error& e) {
       // DCCL has no length fields: after bytes that do not decode, nothing

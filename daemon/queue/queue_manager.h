@@ -70,6 +70,7 @@ class QueueManager {
   // Start-up: brings back what the journal holds (after a crash, messages
   // that were in flight come back eligible). A stored message whose type is
   // no longer loaded, or that no longer encodes, is dropped with an event.
+  // The duplicate filter gets back what was received within its window.
   void restore();
 
   // Any thread. Fills unset source/timestamp roles, encodes (strict mode
@@ -137,9 +138,11 @@ class QueueManager {
   struct Contender;
   std::vector<Contender> contenders(double now);
   TypeState* contest(std::vector<Contender>& field, double now, size_t room, int32_t dest);
-  // Counts, logs and journals an event (`journaled`: the journal already has it).
+  // Counts, logs and journals an event (`journaled`: the journal already has
+  // it; `encoded`: a received message's bytes).
   void emit(QueueEventKind kind, TypeState& state, const JournalMessage& message, double now,
-            uint64_t frame_id, const char* detail, bool removes, bool journaled = false);
+            uint64_t frame_id, const char* detail, bool removes, bool journaled = false,
+            std::string_view encoded = {});
 
   const dccl::Codec& codec_;
   v1::QueueConfig config_;

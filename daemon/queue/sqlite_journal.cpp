@@ -10,11 +10,15 @@ constexpr std::string_view kInsertMessage =
     "INSERT INTO queued_messages (type, payload, src, dest, submitted_at, ttl_s) "
     "VALUES (?, ?, ?, ?, ?, ?)";
 constexpr std::string_view kInsertEvent =
-    "INSERT INTO event_log (time, kind, type, message_id, frame_id, src, dest, detail) "
-    "VALUES (?, ?, ?, ?, ?, ?, ?, ?)";
+    "INSERT INTO event_log (time, kind, type, message_id, frame_id, src, dest, detail, encoded) "
+    "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)";
 constexpr std::string_view kDeleteMessage = "DELETE FROM queued_messages WHERE id = ?";
 constexpr std::string_view kLoadMessages =
     "SELECT id, type, payload, src, dest, submitted_at, ttl_s FROM queued_messages ORDER BY id";
+// By time first, so that event_log_by_time finds the window.
+constexpr std::string_view kLoadReceived =
+    "SELECT time, type, src, dest, encoded FROM event_log "
+    "WHERE time >= ? AND kind = 'received' AND encoded IS NOT NULL ORDER BY time, id";
 
 // A cached statement left mid-step would hold the batch open; reset it
 // whichever way the work ends.
@@ -81,6 +85,11 @@ void SqliteJournal::write_event(const QueueEvent& event) {
   bind_or_null(insert, 6, event.src, -1);
   bind_or_null(insert, 7, event.dest, -1);
   insert.bind(8, event.detail);
+  if (event.encoded.empty()) {
+    insert.bind_null(9);
+  } else {
+    insert.bind_blob(9, event.encoded);
+  }
   insert.step();
   // Same savepoint, same transaction: the event and the removal are on disk
   // together or not at all.
@@ -109,6 +118,26 @@ std::vector<JournalMessage> SqliteJournal::load() {
           m.ttl_s = query.column_double(6);
         }
         return messages;
+      })
+      .get();
+}
+
+std::vector<QueueEvent> SqliteJournal::received_since(double since) {
+  return writer_
+      .submit([since](Database& db) {
+        std::vector<QueueEvent> events;
+        Statement query = db.prepare(kLoadReceived);
+        query.bind_double(1, since);
+        while (query.step()) {
+          QueueEvent& e = events.emplace_back();
+          e.kind = QueueEventKind::kReceived;
+          e.time = query.column_double(0);
+          e.type = query.column_text(1);
+          e.src = query.is_null(2) ? -1 : static_cast<int32_t>(query.column_int64(2));
+          e.dest = query.is_null(3) ? -1 : static_cast<int32_t>(query.column_int64(3));
+          e.encoded = query.column_blob(4);
+        }
+        return events;
       })
       .get();
 }

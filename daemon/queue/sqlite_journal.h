@@ -29,6 +29,7 @@ class SqliteJournal final : public MessageJournal {
   void record(const QueueEvent& event) override;
   // Throws store::StoreError when the store cannot be read.
   std::vector<JournalMessage> load() override;
+  std::vector<QueueEvent> received_since(double since) override;
   // Throws store::StoreError when the last batch failed to commit.
   void flush() override;
 

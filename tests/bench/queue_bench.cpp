@@ -31,6 +31,7 @@ class NullJournal final : public queue::MessageJournal {
   void append(queue::JournalMessage, Appended appended) override { appended(++next_id_, nullptr); }
   void record(const queue::QueueEvent&) override {}
   std::vector<queue::JournalMessage> load() override { return {}; }
+  std::vector<queue::QueueEvent> received_since(double) override { return {}; }
   void flush() override {}
 
  private:

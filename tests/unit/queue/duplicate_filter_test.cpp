@@ -80,5 +80,28 @@ TEST(DuplicateFilterTest, WindowZeroTurnsItOff) {
   for (int i = 0; i < 5; ++i) EXPECT_FALSE(filter.seen(4, "abc", kT));
 }
 
+// What a restarted node fills in from its event log counts as seen, until
+// the window has passed since it was received (not since it was remembered).
+TEST(DuplicateFilterTest, RememberedMessagesAreDuplicatesUntilTheirWindowEnds) {
+  DuplicateFilter filter(60);
+  filter.remember(4, std::string("a\0b", 3), kT);
+  filter.remember(4, "later", kT + 30);
+  EXPECT_TRUE(filter.seen(4, std::string("a\0b", 3), kT + 50));
+  EXPECT_FALSE(filter.seen(5, std::string("a\0b", 3), kT + 50)) << "another source's bytes";
+  EXPECT_FALSE(filter.seen(4, std::string("a\0b", 3), kT + 61)) << "its window ended at kT + 60";
+  EXPECT_TRUE(filter.seen(4, "later", kT + 61));
+}
+
+TEST(DuplicateFilterTest, RememberIsBoundedByCapacityAndOffWithWindowZero) {
+  DuplicateFilter filter(1000, 2);
+  filter.remember(1, "x", kT);
+  filter.remember(1, "y", kT + 1);
+  filter.remember(1, "z", kT + 2);
+  EXPECT_FALSE(filter.seen(1, "x", kT + 3)) << "the oldest was forgotten";
+  DuplicateFilter off(0);
+  off.remember(1, "x", kT);
+  EXPECT_FALSE(off.seen(1, "x", kT));
+}
+
 }  // namespace
 }  // namespace acomms::queue

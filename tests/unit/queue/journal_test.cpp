@@ -211,6 +211,38 @@ TEST_F(JournalTest, EventRowsHoldEveryFieldAndNullForNone) {
   EXPECT_EQ(journal().load().size(), 1u);
 }
 
+TEST_F(JournalTest, ReceivedSinceGivesReceivedEventsWithTheirBytesOldestFirstAfterReopen) {
+  auto event = [](QueueEventKind kind, double time, int32_t src, std::string encoded) {
+    QueueEvent e;
+    e.kind = kind;
+    e.time = time;
+    e.type = "test.Message";
+    e.src = src;
+    e.dest = 1;
+    e.encoded = std::move(encoded);
+    return e;
+  };
+  const std::string with_nul("\x04\x00\xff", 3);
+  journal().record(event(QueueEventKind::kReceived, 1000, 4, "too old"));
+  journal().record(event(QueueEventKind::kReceived, 1070, 5, "second"));
+  journal().record(event(QueueEventKind::kReceived, 1060, 4, with_nul));  // logged late, earlier time
+  journal().record(event(QueueEventKind::kSent, 1065, 4, ""));
+  journal().record(event(QueueEventKind::kReceived, 1066, 4, ""));  // from before the bytes were kept
+  journal().flush();
+  reopen();
+  std::vector<QueueEvent> received = journal().received_since(1050);
+  ASSERT_EQ(received.size(), 2u);
+  EXPECT_EQ(received[0].kind, QueueEventKind::kReceived);
+  EXPECT_DOUBLE_EQ(received[0].time, 1060);
+  EXPECT_EQ(received[0].src, 4);
+  EXPECT_EQ(received[0].dest, 1);
+  EXPECT_EQ(received[0].type, "test.Message");
+  EXPECT_EQ(received[0].encoded, with_nul);
+  EXPECT_DOUBLE_EQ(received[1].time, 1070);
+  EXPECT_EQ(received[1].src, 5);
+  EXPECT_EQ(received[1].encoded, "second");
+}
+
 TEST_F(JournalTest, RemovalAndItsEventAreStoredTogetherOrNotAtAll) {
   int64_t a = journal().append(message("a"));
   int64_t b = journal().append(message("b"));

@@ -191,6 +191,22 @@ TEST_F(QueueAdditionsTest, DefaultWindowIsFiveMinutes) {
   EXPECT_EQ(manager_->receive(frame, 4).size(), 1u);
 }
 
+// A command whose ACK was lost while this node restarted is sent again: the
+// restarted node must not pass it on a second time.
+TEST_F(QueueAdditionsTest, AfterARestartWhatWasReceivedWithinTheWindowIsStillADuplicate) {
+  make("duplicate_window_s: 60");
+  std::string command = encode("qa.Command", "dest: 1 value: 8");
+  ASSERT_EQ(manager_->receive(command, 4).size(), 1u);
+  at(20);
+  make("duplicate_window_s: 60");  // the restarted process: same journal, empty memory
+  manager_->restore();
+  EXPECT_TRUE(manager_->receive(command, 4).empty()) << "the resent command was passed on twice";
+  EXPECT_EQ(manager_->duplicates(), 1u);
+  EXPECT_EQ(manager_->receive(encode("qa.Command", "dest: 1 value: 9"), 4).size(), 1u);
+  at(61);
+  EXPECT_EQ(manager_->receive(command, 4).size(), 1u) << "its window ended 60 s after it was received";
+}
+
 TEST_F(QueueAdditionsTest, WindowZeroDeliversEveryCopy) {
   make("duplicate_window_s: 0");
   std::string frame = encode("qa.Status", "dest: 1 value: 7");
