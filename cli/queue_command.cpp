@@ -86,15 +86,16 @@ void run_stats(const GlobalOptions& global, const QueueOptions& options) {
     print_json(response);
     return;
   }
-  std::printf("%-28s %6s %5s %6s %8s %7s %6s %6s %7s %7s %7s %8s  %-14s %s\n", "TYPE", "ID", "SIZE", "FLIGHT",
-              "PRIORITY", "QUEUED", "SENT", "ACKED", "EXPIRED", "DROPPED", "RETRIED", "RECEIVED", "POLICY",
+  std::printf("%-28s %6s %5s %6s %8s %7s %6s %6s %7s %7s %7s %7s %8s  %-14s %s\n", "TYPE", "ID", "SIZE", "FLIGHT",
+              "PRIORITY", "QUEUED", "SENT", "ACKED", "EXPIRED", "DROPPED", "REFUSED", "RETRIED", "RECEIVED", "POLICY",
               "LAST SENT");
   for (const v1::QueueStatsEntry& q : response.queues()) {
     std::string policy = std::to_string(q.policy().max_queue()) + " " + on_full_text(q.policy());
-    std::printf("%-28s %6d %5u %6u %8.3g %7llu %6llu %6llu %7llu %7llu %7llu %8llu  %-14s %s\n", q.type().c_str(),
-                q.dccl_id(), q.size(), q.in_flight(), q.priority(), static_cast<unsigned long long>(q.queued()),
-                static_cast<unsigned long long>(q.sent()), static_cast<unsigned long long>(q.acked()),
-                static_cast<unsigned long long>(q.expired()), static_cast<unsigned long long>(q.dropped()),
+    std::printf("%-28s %6d %5u %6u %8.3g %7llu %6llu %6llu %7llu %7llu %7llu %7llu %8llu  %-14s %s\n",
+                q.type().c_str(), q.dccl_id(), q.size(), q.in_flight(), q.priority(),
+                static_cast<unsigned long long>(q.queued()), static_cast<unsigned long long>(q.sent()),
+                static_cast<unsigned long long>(q.acked()), static_cast<unsigned long long>(q.expired()),
+                static_cast<unsigned long long>(q.dropped()), static_cast<unsigned long long>(q.refused()),
                 static_cast<unsigned long long>(q.retried()), static_cast<unsigned long long>(q.received()),
                 policy.c_str(), utc_text(q.last_sent()).c_str());
   }
@@ -136,7 +137,7 @@ void add_queue_command(CLI::App& app, const GlobalOptions& global) {
   stats->add_option("TYPE", options.types, "Only these types (default: every queue)")->type_name("");
   stats->footer(
       "Per queue: messages held and in flight, priority in the contest for the next frame, counters "
-      "since the daemon started (queued, sent, acked, expired, dropped, retried, received), the "
+      "since the daemon started (queued, sent, acked, expired, dropped, refused, retried, received), the "
       "max_queue and on_full policy, and when it last sent.\n\n"
       "Example:\n  acommsctl queue stats --json | jq '.queues[] | {type, size, dropped}'");
   stats->callback([&global] { run_stats(global, options); });

@@ -24,6 +24,7 @@ bool Queue::push(QueuedMessage message, std::optional<QueuedMessage>* dropped) {
   }
   next_expiry_ = std::min(next_expiry_, message.record.submitted_at + ttl_of(message));
   messages_.push_back(std::move(message));
+  note_size();
   return true;
 }
 
@@ -68,6 +69,7 @@ void Queue::mark_sent(int64_t id, uint64_t frame_id, double now) {
     return;
   }
   messages_.erase(it);
+  note_size();
 }
 
 namespace {
@@ -99,6 +101,7 @@ std::vector<QueuedMessage> Queue::take_acked(uint64_t frame_id) {
     messages_.erase(it);
   }
   in_flight_ids_ = std::move(still_in_flight);
+  note_size();
   return acked;
 }
 
@@ -110,6 +113,7 @@ std::vector<QueuedMessage> Queue::take_expired(double now) {
   for (const QueuedMessage& m : expired) {
     if (m.in_flight_frame != 0) forget_in_flight(m.record.id);
   }
+  note_size();
   return expired;
 }
 
@@ -117,6 +121,7 @@ std::optional<QueuedMessage> Queue::take(int64_t id) {
   auto taken = extract(messages_, [id](const QueuedMessage& m) { return m.record.id == id; });
   if (taken.empty()) return std::nullopt;
   if (taken.front().in_flight_frame != 0) forget_in_flight(id);
+  note_size();
   return std::move(taken.front());
 }
 

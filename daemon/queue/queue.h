@@ -2,6 +2,7 @@
 // One queue: the messages of one DCCL type, in submission order, under that
 // type's policy. Owned and used by the QueueManager on the core thread only.
 
+#include <atomic>
 #include <deque>
 #include <optional>
 #include <string>
@@ -28,6 +29,10 @@ class Queue {
   // message is removed and returned in *dropped; with REFUSE_NEW nothing
   // changes and false is returned.
   bool push(QueuedMessage message, std::optional<QueuedMessage>* dropped);
+
+  // Any thread: true while the queue is full and its policy is REFUSE_NEW,
+  // so that a Submit can be refused before it is stored.
+  bool refuses_new() const { return refuses_new_.load(std::memory_order_relaxed); }
 
   // P(t) = value_base * (t - t_last_sent) / ttl.
   double priority(double now) const;
@@ -67,6 +72,11 @@ class Queue {
   }
 
  private:
+  // After every change of size: keeps refuses_new() true to the queue.
+  void note_size() {
+    refuses_new_.store(policy_.on_full == QueuePolicy::OnFull::kRefuseNew && messages_.size() >= policy_.max_queue,
+                       std::memory_order_relaxed);
+  }
   void forget_in_flight(int64_t id);
 
   std::string type_;
@@ -84,6 +94,7 @@ class Queue {
   // No message expires before this time: lets the expiry sweep, which runs
   // for every queue on every frame, cost nothing when nothing is due.
   double next_expiry_ = 0;
+  std::atomic<bool> refuses_new_{false};
 };
 
 }  // namespace acomms::queue

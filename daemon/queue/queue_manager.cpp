@@ -24,6 +24,11 @@ const v1::QueueTypeConfig* type_config(const v1::QueueConfig& config, const std:
 
 }  // namespace
 
+std::string queue_full_text(const Queue& queue) {
+  return "queue " + queue.type() + " is full (max_queue " + std::to_string(queue.policy().max_queue) +
+         ") and refuses new messages";
+}
+
 QueueManager::QueueManager(const dccl::Codec& codec, const v1::QueueConfig& config, int32_t own_id,
                            const core::Clock& clock, MessageJournal& journal)
     : codec_(codec),
@@ -58,13 +63,13 @@ std::vector<std::string> QueueManager::add_types() {
     if (info->omit_id) continue;  // without an id, a frame cannot say what it carries
     if (by_name_.count(info->name) > 0) continue;
     const v1::QueueTypeConfig* entry = type_config(config_, info->name);
-    TypeState state;
     QueuePolicy policy = resolve_policy(entry ? entry->policy() : v1::QueuePolicy(), config_.defaults(),
                                         "queue " + info->name);
+    MessageRoles roles(info->descriptor, entry ? entry->roles() : v1::QueueRoles());
+    TypeState& state = by_id_.try_emplace(info->id).first->second;
     state.queue = std::make_unique<Queue>(info->name, info->id, policy, now);
-    state.roles = MessageRoles(info->descriptor, entry ? entry->roles() : v1::QueueRoles());
-    auto [it, inserted] = by_id_.emplace(info->id, std::move(state));
-    by_name_[info->name] = &it->second;
+    state.roles = std::move(roles);
+    by_name_[info->name] = &state;
     added.push_back(info->name);
   }
   return added;
@@ -175,6 +180,13 @@ QueuedMessage QueueManager::prepare_new(const pb::Message& message, double ttl_s
                                                   : "no DCCL type " + type + " is loaded");
   }
   const TypeState& state = *it->second;
+  // Checked before anything is written, so that a refused Submit leaves no
+  // trace in the store. Submits already being stored when the queue fills
+  // are refused by accept() instead, after the fact.
+  if (state.queue->refuses_new()) {
+    state.refused.fetch_add(1, std::memory_order_relaxed);
+    throw QueueFullError(queue_full_text(*state.queue));
+  }
   double now = clock_.now_seconds();
   std::unique_ptr<pb::Message> filled = codec_.new_message(type);
   filled->CopyFrom(message);
@@ -418,6 +430,11 @@ std::vector<const Queue*> QueueManager::queues() const {
   return out;
 }
 
-const QueueStats& QueueManager::stats(const std::string& type) const { return by_name_.at(type)->stats; }
+QueueStats QueueManager::stats(const std::string& type) const {
+  const TypeState& state = *by_name_.at(type);
+  QueueStats stats = state.stats;
+  stats.refused = state.refused.load(std::memory_order_relaxed);
+  return stats;
+}
 
 }  // namespace acomms::queue

@@ -15,12 +15,14 @@
 
 #include <google/protobuf/message.h>
 
+#include <atomic>
 #include <cstdint>
 #include <exception>
 #include <functional>
 #include <map>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -52,6 +54,15 @@ class UnknownTypeError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
 };
+
+// Submit failed because the type's queue is full and refuses new messages.
+class QueueFullError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// "queue T is full (max_queue N) and refuses new messages".
+std::string queue_full_text(const Queue& queue);
 
 class QueueManager {
  public:
@@ -119,7 +130,7 @@ class QueueManager {
 
   const Queue* find_queue(const std::string& type) const;
   std::vector<const Queue*> queues() const;
-  const QueueStats& stats(const std::string& type) const;
+  QueueStats stats(const std::string& type) const;
   uint64_t malformed_frames() const { return malformed_frames_; }
   // Received messages recognised as retransmissions and not passed on.
   uint64_t duplicates() const { return duplicates_; }
@@ -128,7 +139,9 @@ class QueueManager {
   struct TypeState {
     std::unique_ptr<Queue> queue;
     MessageRoles roles;
-    QueueStats stats;
+    QueueStats stats;  // core thread
+    // Counted by journal_new, on any thread.
+    mutable std::atomic<uint64_t> refused{0};
   };
 
   // journal_new's checks and encoding: the message as it will be queued,

@@ -89,6 +89,8 @@ grpc::Status AcommsService::submit_to_journal(const v1::SubmitRequest& request, 
         });
   } catch (const queue::UnknownTypeError& e) {
     return {StatusCode::NOT_FOUND, e.what()};
+  } catch (const queue::QueueFullError& e) {
+    return {StatusCode::RESOURCE_EXHAUSTED, e.what()};
   } catch (const dccl::Error& e) {
     return {StatusCode::INVALID_ARGUMENT, e.what()};
   } catch (const std::exception& e) {
@@ -103,10 +105,11 @@ void AcommsService::accept_submitted(queue::QueuedMessage queued, v1::SubmitResp
   const int64_t id = queued.record.id;
   const std::string type = queued.record.type;
   if (!parts_.queues.accept(std::move(queued))) {
+    // Filled while this message was being stored: it was stored, and
+    // accept() dropped it again with an event.
     const queue::Queue* queue = parts_.queues.find_queue(type);
     reactor->Finish({grpc::StatusCode::RESOURCE_EXHAUSTED,
-                     "queue " + type + " is full (max_queue " + std::to_string(queue ? queue->policy().max_queue : 0) +
-                         ") and refuses new messages"});
+                     queue ? queue::queue_full_text(*queue) : "queue " + type + " is full"});
     return;
   }
   response->set_message_id(id);

@@ -111,7 +111,7 @@ grpc::Status AcommsService::QueueStats(grpc::ServerContext*, const v1::QueueStat
     double now = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
     for (const queue::Queue* queue : parts_.queues.queues()) {
       if (!wanted.empty() && wanted.count(queue->type()) == 0) continue;
-      const queue::QueueStats& stats = parts_.queues.stats(queue->type());
+      const queue::QueueStats stats = parts_.queues.stats(queue->type());
       v1::QueueStatsEntry* entry = response->add_queues();
       entry->set_type(queue->type());
       entry->set_dccl_id(queue->dccl_id());
@@ -126,6 +126,7 @@ grpc::Status AcommsService::QueueStats(grpc::ServerContext*, const v1::QueueStat
       entry->set_dropped(stats.dropped);
       entry->set_retried(stats.retried);
       entry->set_received(stats.received);
+      entry->set_refused(stats.refused);
       *entry->mutable_policy() = to_proto(queue->policy());
     }
   });

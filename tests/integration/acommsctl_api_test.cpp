@@ -254,6 +254,19 @@ TEST_F(AcommsctlApi, FullQueueThatRefusesNewIsResourceExhausted) {
   EXPECT_EQ(second.err.rfind("acommsctl: RESOURCE_EXHAUSTED: ", 0), 0u) << second.err;
   EXPECT_NE(second.err.find("ctltest.Beacon"), std::string::npos) << second.err;
   EXPECT_EQ(queued("ctltest.Beacon").messages_size(), 1);
+  // Refused before it was stored: one "queued" event (the first), nothing
+  // dropped, and the refusal counted.
+  RunResult events = ctl({"events", "--json", "--type", "ctltest.Beacon", "--since", "-1h"});
+  ASSERT_EQ(events.exit_code, 0) << events.err;
+  v1::EventsResponse log = parse_json<v1::EventsResponse>(events.out);
+  ASSERT_EQ(log.events_size(), 1) << events.out;
+  EXPECT_EQ(log.events(0).kind(), "queued");
+  RunResult stats = ctl({"queue", "stats", "--json", "ctltest.Beacon"});
+  ASSERT_EQ(stats.exit_code, 0) << stats.err;
+  v1::QueueStatsResponse counted = parse_json<v1::QueueStatsResponse>(stats.out);
+  ASSERT_EQ(counted.queues_size(), 1) << stats.out;
+  EXPECT_EQ(counted.queues(0).refused(), 1u);
+  EXPECT_EQ(counted.queues(0).dropped(), 0u);
 }
 
 TEST_F(AcommsctlApi, InteractiveSendReadsAnswersFromAPipe) {

@@ -142,7 +142,7 @@ TEST(SimulatedNetwork, ThreeNodesDiscoverEachOtherThenExchangeMessagesWithAcks) 
     for (const std::string& text : node->received) {
       EXPECT_NE(text.find("dest: " + std::to_string(id) + " "), std::string::npos) << text;
     }
-    const queue::QueueStats& stats = node->queues->stats("net.Status");
+    const queue::QueueStats stats = node->queues->stats("net.Status");
     EXPECT_EQ(stats.acked, 2u) << "node " << id;
     EXPECT_EQ(node->queues->find_queue("net.Status")->size(), 0u) << "node " << id << " still holds messages";
     EXPECT_EQ(node->journal.stored(), 0u);

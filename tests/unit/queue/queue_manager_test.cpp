@@ -248,9 +248,12 @@ TEST_F(QueueTest, FullQueueDropsTheOldestOrRefusesTheNew) {
   EXPECT_NE(status->messages().front().record.id, first);
   EXPECT_EQ(manager_->stats("qt.Status").dropped, 1u);
 
-  submit("qt.Command", "value: 1");
-  submit("qt.Command", "value: 2");
+  int64_t command = submit("qt.Command", "value: 1");
+  // Both stored while the queue still had room; it fills before the third
+  // is accepted (concurrent Submits): that one is stored, then refused.
+  QueuedMessage second = manager_->journal_new(*message("qt.Command", "value: 2"));
   QueuedMessage third = manager_->journal_new(*message("qt.Command", "value: 3"));
+  EXPECT_TRUE(manager_->accept(std::move(second)));
   int64_t refused = third.record.id;
   EXPECT_FALSE(manager_->accept(std::move(third)));
   EXPECT_EQ(manager_->find_queue("qt.Command")->size(), 2u);
@@ -264,6 +267,62 @@ TEST_F(QueueTest, FullQueueDropsTheOldestOrRefusesTheNew) {
   }
   EXPECT_TRUE(logged);
   EXPECT_EQ(journal_.stored(), 4u);  // neither the dropped nor the refused one is kept
+  EXPECT_EQ(manager_->stats("qt.Command").dropped, 1u);
+
+  // Once the queue is full, a Submit is refused before it is stored: no id,
+  // no event, nothing written.
+  const size_t events = journal_.events().size();
+  try {
+    manager_->journal_new(*message("qt.Command", "value: 4"));
+    ADD_FAILURE() << "a full REFUSE_NEW queue took a new message";
+  } catch (const QueueFullError& e) {
+    EXPECT_STREQ(e.what(), "queue qt.Command is full (max_queue 2) and refuses new messages");
+  }
+  EXPECT_EQ(journal_.events().size(), events);
+  EXPECT_EQ(journal_.stored(), 4u);
+  EXPECT_EQ(manager_->stats("qt.Command").refused, 1u);
+  EXPECT_EQ(manager_->stats("qt.Command").dropped, 1u);
+  // DROP_OLDEST never refuses.
+  EXPECT_EQ(manager_->stats("qt.Status").refused, 0u);
+  submit("qt.Status", "value: 4");
+
+  // With room again, new messages are taken.
+  ASSERT_TRUE(manager_->cancel(command, "test"));
+  submit("qt.Command", "value: 5");
+  EXPECT_EQ(manager_->find_queue("qt.Command")->size(), 2u);
+}
+
+// The refusal before storing must end as soon as a message leaves the
+// queue, whichever way it leaves.
+TEST_F(QueueTest, RefusalEndsWhenAMessageLeavesByExpiryOrSending) {
+  make(R"(type { type: "qt.Command" policy { max_queue: 1 on_full: REFUSE_NEW ttl_s: 10 ack: true } })");
+  auto refused = [&] {
+    try {
+      manager_->journal_new(*message("qt.Command", "value: 9"));
+    } catch (const QueueFullError&) {
+      return true;
+    }
+    return false;
+  };
+  submit("qt.Command", "value: 1");
+  EXPECT_TRUE(refused());
+  at(11);
+  manager_->expire();
+  EXPECT_EQ(count(QueueEventKind::kExpired), 1);
+  submit("qt.Command", "value: 2");
+  EXPECT_TRUE(refused());
+  ASSERT_EQ(request(one(), 1, kAnyDestination, /*ack=*/false).size(), 1u);
+  EXPECT_EQ(manager_->find_queue("qt.Command")->size(), 0u);
+  submit("qt.Command", "dest: 2 value: 3");
+  EXPECT_TRUE(refused());
+  // Sent awaiting its ack, it still holds its place; acked, it leaves.
+  std::vector<Frame> frames = request(one());
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_TRUE(refused());
+  manager_->on_ack(frames[0].frame_id);
+  submit("qt.Command", "value: 4");
+  EXPECT_TRUE(refused());
+  EXPECT_EQ(manager_->stats("qt.Command").refused, 5u);
 }
 
 TEST_F(QueueTest, FirstMessageSetsTheDestinationLaterOnesMustAgreeOrBroadcast) {
