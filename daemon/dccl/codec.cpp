@@ -223,6 +223,8 @@ struct Codec::Impl {
   void check_unchanged(const gp::FileDescriptor* file, std::set<std::string>* seen, std::vector<std::string>* errs) {
     if (!seen->insert(file->name()).second) return;
     for (int i = 0; i < file->dependency_count(); ++i) check_unchanged(file->dependency(i), seen, errs);
+    // Asks without building: FindFileByName would load the file from disk.
+    // (Public, though protobuf marks it for internal use.)
     if (!pool.InternalIsFileLoaded(file->name())) return;
     const gp::FileDescriptor* built = pool.FindFileByName(file->name());
     gp::FileDescriptorProto now;

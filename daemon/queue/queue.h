@@ -1,6 +1,7 @@
 #pragma once
 // One queue: the messages of one DCCL type, in submission order, under that
-// type's policy. Owned and used by the QueueManager on the core thread only.
+// type's policy. Owned and used by the QueueManager on the core thread only
+// (refuses_new() excepted).
 
 #include <atomic>
 #include <deque>
