@@ -26,10 +26,6 @@ double seconds_since_epoch(Clock::time_point t) {
   return std::chrono::duration<double>(t.time_since_epoch()).count();
 }
 
-std::chrono::nanoseconds seconds(double s) {
-  return std::chrono::nanoseconds(static_cast<int64_t>(std::llround(s * 1e9)));
-}
-
 bool overlap(Clock::time_point a_start, Clock::time_point a_end, Clock::time_point b_start,
              Clock::time_point b_end) {
   // Half-open: a packet ending exactly as another starts does not collide.
@@ -226,11 +222,16 @@ bool SimDriver::transmit(ModemTransmission tx, std::chrono::nanoseconds air_time
 
 void SimDriver::hear(const SimEnvelope& envelope) {
   if (!running_ || envelope.sender == id_) return;
+  std::optional<SimHearing> heard = hearing(envelope, position_, sound_speed_);
+  if (!heard) {
+    spdlog::debug("sim modem {}: packet from {} too far to arrive", id_, envelope.sender);
+    return;
+  }
   ++stats_.heard;
   Arrival arrival;
-  arrival.range_m = distance(position_, envelope.position);
-  arrival.interval.start = envelope.start + seconds(arrival.range_m / sound_speed_);
-  arrival.interval.end = arrival.interval.start + envelope.duration;
+  arrival.range_m = heard->range_m;
+  arrival.interval.start = heard->start;
+  arrival.interval.end = heard->end;
   arrival.envelope = envelope;
   for (auto& [key, other] : arrivals_) {
     if (overlap(other.interval.start, other.interval.end, arrival.interval.start, arrival.interval.end)) {

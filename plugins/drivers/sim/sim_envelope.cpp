@@ -13,6 +13,12 @@ constexpr uint8_t kVersion = 1;
 constexpr size_t kHeaderSize = 4 + 1 + 4 + 3 * 8 + 8 + 8 + 4;
 // Longer than any Micro-Modem packet by far; anything beyond is garbage.
 constexpr std::chrono::nanoseconds kMaxDuration = std::chrono::minutes(10);
+// Farther than any acoustic path; also keeps distances and delays finite.
+constexpr double kMaxCoordinate = 1e7;  // m
+// 2100-01-01T00:00:00Z: with a day of travel and kMaxDuration added, still
+// far from the int64 nanosecond limit (2262).
+constexpr int64_t kLatestStartNs = 4'102'444'800LL * 1'000'000'000LL;
+constexpr double kMaxTravelSeconds = 86'400;
 
 void put_u32(std::string* out, uint32_t v) {
   for (int i = 0; i < 4; ++i) out->push_back(static_cast<char>((v >> (8 * i)) & 0xff));
@@ -73,8 +79,14 @@ std::optional<SimEnvelope> decode_envelope(std::string_view bytes, std::string* 
   e.duration = std::chrono::nanoseconds(static_cast<int64_t>(get_u64(p + 41)));
   uint32_t length = get_u32(p + 49);
   if (e.sender < 0) return fail("negative sender id " + std::to_string(e.sender));
-  if (!std::isfinite(e.position.x) || !std::isfinite(e.position.y) || !std::isfinite(e.position.z)) {
-    return fail("position is not finite");
+  for (double coordinate : {e.position.x, e.position.y, e.position.z}) {
+    // Also false for NaN.
+    if (!(std::fabs(coordinate) <= kMaxCoordinate)) {
+      return fail("position is not finite or farther than 10,000 km");
+    }
+  }
+  if (start_ns < 0 || start_ns > kLatestStartNs) {
+    return fail("start " + std::to_string(start_ns) + " ns is not between 1970 and 2100");
   }
   if (e.duration.count() <= 0 || e.duration > kMaxDuration) {
     return fail("duration " + std::to_string(e.duration.count()) + " ns is out of range");
@@ -89,6 +101,17 @@ std::optional<SimEnvelope> decode_envelope(std::string_view bytes, std::string* 
     return fail("transmission does not parse");
   }
   return e;
+}
+
+std::optional<SimHearing> hearing(const SimEnvelope& envelope, const SimPosition& at, double sound_speed_mps) {
+  SimHearing heard;
+  heard.range_m = distance(at, envelope.position);
+  const double travel_s = heard.range_m / sound_speed_mps;
+  if (!(travel_s >= 0 && travel_s <= kMaxTravelSeconds)) return std::nullopt;
+  heard.start = envelope.start + std::chrono::duration_cast<core::Clock::time_point::duration>(
+                                     std::chrono::nanoseconds(std::llround(travel_s * 1e9)));
+  heard.end = heard.start + std::chrono::duration_cast<core::Clock::time_point::duration>(envelope.duration);
+  return heard;
 }
 
 }  // namespace acomms::drivers

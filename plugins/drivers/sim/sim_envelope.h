@@ -38,7 +38,21 @@ struct SimEnvelope {
 
 std::string encode(const SimEnvelope& envelope);
 // nullopt, with `error` saying what is wrong, for anything that is not a
-// well-formed envelope: the loopback socket may receive anything.
+// well-formed envelope: the loopback socket may receive anything. Beyond
+// its layout, an envelope must be physically possible: a sender id >= 0,
+// coordinates within 10,000 km, a duration of at most 10 minutes and a
+// start between 1970 and 2100, so that hearing() stays within range.
 std::optional<SimEnvelope> decode_envelope(std::string_view bytes, std::string* error);
+
+// When a modem at `at` hears the envelope's sound: from `start` to `end` on
+// the shared clock, after travelling `range_m` at `sound_speed_mps`.
+struct SimHearing {
+  double range_m = 0;
+  core::Clock::time_point start;
+  core::Clock::time_point end;
+};
+// nullopt when the sound would take longer than a day to arrive (so far, or
+// so slow, that no simulation waits for it).
+std::optional<SimHearing> hearing(const SimEnvelope& envelope, const SimPosition& at, double sound_speed_mps);
 
 }  // namespace acomms::drivers

@@ -54,6 +54,39 @@ TEST(SimEnvelopeTest, MalformedInputIsRejectedWithAReason) {
   EXPECT_FALSE(decode_envelope(nan, &error));
 }
 
+// The loopback port hears anything: an envelope that parses but is not
+// physically possible must not reach the arrival arithmetic.
+TEST(SimEnvelopeTest, ImpossiblePositionsAndStartsAreRejected) {
+  std::string error;
+  SimEnvelope far = sample();
+  far.position.x = 1e300;
+  EXPECT_FALSE(decode_envelope(encode(far), &error));
+  EXPECT_NE(error.find("farther than 10,000 km"), std::string::npos) << error;
+  far.position = {0, 0, -1e7};  // exactly the limit
+  EXPECT_TRUE(decode_envelope(encode(far), &error)) << error;
+
+  SimEnvelope late = sample();
+  late.start = core::Clock::time_point(std::chrono::nanoseconds(INT64_MAX - 1));
+  EXPECT_FALSE(decode_envelope(encode(late), &error));
+  EXPECT_NE(error.find("not between 1970 and 2100"), std::string::npos) << error;
+  late.start = core::Clock::time_point(std::chrono::nanoseconds(-1));
+  EXPECT_FALSE(decode_envelope(encode(late), &error));
+}
+
+TEST(SimEnvelopeTest, HearingIsTheStartPlusTheTravelTime) {
+  SimEnvelope e = sample();
+  e.position = {0, 0, 0};
+  auto heard = hearing(e, {3000, 0, -4000}, 1500);  // 5 km at 1500 m/s
+  ASSERT_TRUE(heard);
+  EXPECT_DOUBLE_EQ(heard->range_m, 5000);
+  EXPECT_EQ(heard->start - e.start, std::chrono::nanoseconds(3'333'333'333));
+  EXPECT_EQ(heard->end - heard->start, e.duration);
+  // Farthest possible envelope, slowest sound that still arrives in a day.
+  e.position = {1e7, 1e7, 1e7};
+  EXPECT_TRUE(hearing(e, {-1e7, -1e7, -1e7}, 500));
+  EXPECT_FALSE(hearing(e, {-1e7, -1e7, -1e7}, 1)) << "more than a day of travel";
+}
+
 TEST(SimEnvelopeTest, RandomBytesNeverCrash) {
   std::mt19937 rng(1);
   std::string good = encode(sample());
