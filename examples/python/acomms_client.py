@@ -149,6 +149,20 @@ class Subscription:
         self.cancel()
 
 
+def _set_message(request, message: Message) -> None:
+    """Puts `message` into a SubmitRequest or EncodeRequest: a protobuf
+    message or bytes as the payload, a str as JSON, anything else (a dict)
+    dumped to JSON."""
+    if isinstance(message, _pb_message.Message):
+        request.payload = message.SerializePartialToString()
+    elif isinstance(message, (bytes, bytearray)):
+        request.payload = bytes(message)
+    elif isinstance(message, str):
+        request.json = message
+    else:
+        request.json = _json.dumps(message)
+
+
 def connect(socket: Optional[str] = None, timeout: Optional[float] = 10.0) -> "AcommsClient":
     """An AcommsClient on the unix socket `socket` (default: default_socket())."""
     return AcommsClient(socket, timeout)
@@ -227,14 +241,7 @@ class AcommsClient:
         ttl:     seconds it may wait in the queue; 0: the queue's ttl.
         """
         request = pb.SubmitRequest(type=type, ttl_s=ttl)
-        if isinstance(message, _pb_message.Message):
-            request.payload = message.SerializePartialToString()
-        elif isinstance(message, (bytes, bytearray)):
-            request.payload = bytes(message)
-        elif isinstance(message, str):
-            request.json = message
-        else:
-            request.json = _json.dumps(message)
+        _set_message(request, message)
         return self._call("Submit", request).message_id
 
     # ------------------------------------------------------------ subscribe
@@ -296,14 +303,7 @@ class AcommsClient:
     def encode(self, type: str, message: Message) -> bytes:
         """The DCCL bytes `message` encodes to, without queueing it."""
         request = pb.EncodeRequest(type=type)
-        if isinstance(message, _pb_message.Message):
-            request.payload = message.SerializePartialToString()
-        elif isinstance(message, (bytes, bytearray)):
-            request.payload = bytes(message)
-        elif isinstance(message, str):
-            request.json = message
-        else:
-            request.json = _json.dumps(message)
+        _set_message(request, message)
         return self._call("Encode", request).encoded
 
     def decode(self, encoded: bytes, type: str = "") -> List[Dict[str, Any]]:
