@@ -22,13 +22,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include <spdlog/spdlog.h>
 
+#include "count_list.h"
 #include "fdatasync_probe.h"
 #include "queue/sqlite_journal.h"
 #include "store/group_commit_writer.h"
@@ -105,14 +105,6 @@ Result run(const Options& options, int threads) {
   return result;
 }
 
-std::vector<int> parse_list(const std::string& text) {
-  std::vector<int> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) values.push_back(std::stoi(item));
-  return values;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -126,7 +118,7 @@ int main(int argc, char** argv) {
     } else if (arg.rfind("--seconds=", 0) == 0) {
       options.seconds = std::stod(arg.substr(10));
     } else if (arg.rfind("--threads=", 0) == 0) {
-      options.threads = parse_list(arg.substr(10));
+      options.threads = bench::parse_count_list(arg.substr(10));
     } else if (arg.rfind("--dir=", 0) == 0) {
       options.base_dir = arg.substr(6);
     } else {

@@ -49,6 +49,7 @@
 #include "acomms/v1/acomms.grpc.pb.h"
 #include "child_process.h"
 #include "daemon_harness.h"
+#include "count_list.h"
 #include "fdatasync_probe.h"
 
 namespace {
@@ -187,10 +188,23 @@ std::string status_json(uint32_t seq, int client) {
          ".5,\"battery\":" + std::to_string(seq % 101) + "}";
 }
 
+// Where a run is: clients count only the calls they start in kMeasure.
+enum Phase { kWarmup, kMeasure, kStop };
+
+// Lets the clients warm up, then measure, then stop; returns the seconds
+// measured.
+double run_phases(std::atomic<int>& phase, const Options& options) {
+  std::this_thread::sleep_for(std::chrono::duration<double>(options.warmup));
+  auto start = Clock::now();
+  phase = kMeasure;
+  std::this_thread::sleep_for(std::chrono::duration<double>(options.duration));
+  phase = kStop;
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
 // `clients` threads, each with its own channel, submitting for warm-up then
 // for the measured duration. Only calls started in the measured window count.
 Row run_clients_on_threads(const Options& options, const std::string& socket, int clients, bool get_status) {
-  enum Phase { kWarmup, kMeasure, kStop };
   std::atomic<int> phase{kWarmup};
   std::atomic<int> connected{0};
   std::atomic<bool> go{false};
@@ -241,12 +255,7 @@ Row run_clients_on_threads(const Options& options, const std::string& socket, in
   }
   while (connected.load() < clients) std::this_thread::sleep_for(1ms);
   go = true;
-  std::this_thread::sleep_for(std::chrono::duration<double>(options.warmup));
-  auto start = Clock::now();
-  phase = kMeasure;
-  std::this_thread::sleep_for(std::chrono::duration<double>(options.duration));
-  phase = kStop;
-  row.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  row.seconds = run_phases(phase, options);
   for (auto& thread : threads) thread.join();
   summarise(latencies, &row);
   return row;
@@ -255,7 +264,6 @@ Row run_clients_on_threads(const Options& options, const std::string& socket, in
 // The same clients driven by one thread: each client's next call starts
 // from the completion of its last one.
 Row run_clients_on_events(const Options& options, const std::string& socket, int clients, bool get_status) {
-  enum Phase { kWarmup, kMeasure, kStop };
   struct Client {
     int index = 0;
     std::unique_ptr<v1::Acomms::Stub> stub;
@@ -324,12 +332,7 @@ Row run_clients_on_events(const Options& options, const std::string& socket, int
       }
     }
   });
-  std::this_thread::sleep_for(std::chrono::duration<double>(options.warmup));
-  auto start = Clock::now();
-  phase = kMeasure;
-  std::this_thread::sleep_for(std::chrono::duration<double>(options.duration));
-  phase = kStop;
-  row.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  row.seconds = run_phases(phase, options);
   driver.join();
   queue.Shutdown();
   void* tag = nullptr;
@@ -515,14 +518,6 @@ bool idle_memory(const Options& options) {
   return memory.rss_kb >= 0;
 }
 
-std::vector<int> parse_list(const std::string& text) {
-  std::vector<int> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) values.push_back(std::stoi(item));
-  return values;
-}
-
 [[noreturn]] void usage() {
   std::fprintf(stderr,
                "usage: submit_bench [--duration S] [--warmup S] [--clients 1,8] [--idle S] [--dir D]\n"
@@ -557,7 +552,7 @@ int main(int argc, char** argv) {
       if (arg == "--duration") options.duration = std::stod(next());
       else if (arg == "--warmup") options.warmup = std::stod(next());
       else if (arg == "--idle") options.idle = std::stod(next());
-      else if (arg == "--clients") options.clients = parse_list(next());
+      else if (arg == "--clients") options.clients = bench::parse_count_list(next());
       else if (arg == "--dir") options.base_dir = next();
       else if (arg == "--acommsd") options.acommsd = next();
       else if (arg == "--example-config") options.example_config = next();
