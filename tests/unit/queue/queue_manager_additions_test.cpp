@@ -13,8 +13,7 @@
 #include <limits>
 #include <optional>
 
-#include "queue/memory_journal.h"
-#include "queue/queue_manager.h"
+#include "queue_manager_fixture.h"
 
 namespace acomms::queue {
 namespace {
@@ -57,10 +56,9 @@ message NoId {
 }
 )";
 
-constexpr double kStart = 1'700'000'000;
-constexpr int32_t kOwnId = 1;
+using testing::kOwnId;
 
-class QueueAdditionsTest : public ::testing::Test {
+class QueueAdditionsTest : public testing::QueueManagerFixture {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
@@ -87,26 +85,6 @@ class QueueAdditionsTest : public ::testing::Test {
     return *manager_;
   }
 
-  std::string encode(const std::string& type, const std::string& text) {
-    auto m = codec_.new_message(type);
-    EXPECT_TRUE(pb::TextFormat::ParseFromString(text, m.get())) << text;
-    return codec_.encode(*m);
-  }
-
-  int64_t submit(const std::string& type, const std::string& text) {
-    auto m = codec_.new_message(type);
-    EXPECT_TRUE(pb::TextFormat::ParseFromString(text, m.get())) << text;
-    QueuedMessage queued = manager_->journal_new(*m);
-    int64_t id = queued.record.id;
-    EXPECT_TRUE(manager_->accept(std::move(queued)));
-    return id;
-  }
-
-  void at(double seconds_after_start) {
-    clock_.set(core::Clock::time_point(std::chrono::duration_cast<core::Clock::time_point::duration>(
-        std::chrono::duration<double>(kStart + seconds_after_start))));
-  }
-
   std::vector<std::string> queue_names() {
     std::vector<std::string> names;
     for (const Queue* q : manager_->queues()) names.push_back(q->type());
@@ -114,11 +92,6 @@ class QueueAdditionsTest : public ::testing::Test {
     return names;
   }
 
-  fs::path dir_;
-  dccl::Codec codec_;
-  core::SimulatedClock clock_{core::Clock::time_point(std::chrono::seconds(static_cast<int64_t>(kStart)))};
-  MemoryJournal journal_;
-  std::unique_ptr<QueueManager> manager_;
 };
 
 // ------------------------------------------------------------ duplicates
@@ -136,9 +109,7 @@ TEST_F(QueueAdditionsTest, SameFrameTwiceIsDeliveredOnceAndCounted) {
   EXPECT_EQ(manager_->duplicates(), 2u);
   EXPECT_EQ(manager_->stats("qa.Status").received, 1u);
   EXPECT_EQ(manager_->stats("qa.Command").received, 1u);
-  int received_events = 0;
-  for (const auto& e : journal_.events()) received_events += e.kind == QueueEventKind::kReceived;
-  EXPECT_EQ(received_events, 2);
+  EXPECT_EQ(count(QueueEventKind::kReceived), 2);
   EXPECT_EQ(manager_->malformed_frames(), 0u);
 }
 

@@ -14,7 +14,7 @@
 #include <fstream>
 
 #include "dccl/hex.h"
-#include "queue/memory_journal.h"
+#include "queue_manager_fixture.h"
 
 namespace acomms::queue {
 namespace {
@@ -50,10 +50,10 @@ message Ctd {
 }
 )";
 
-constexpr double kStart = 1'700'000'000;
-constexpr int32_t kOwnId = 1;
+using testing::kOwnId;
+using testing::kStart;
 
-class QueueTest : public ::testing::Test {
+class QueueTest : public testing::QueueManagerFixture {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() / ("acomms-queue-" + std::to_string(::getpid()));
@@ -84,25 +84,6 @@ class QueueTest : public ::testing::Test {
     return *manager_;
   }
 
-  std::unique_ptr<pb::Message> message(const std::string& type, const std::string& text) {
-    auto m = codec_.new_message(type);
-    EXPECT_TRUE(pb::TextFormat::ParseFromString(text, m.get())) << text;
-    return m;
-  }
-
-  // Submits as a client would: journal (any thread), then accept (core).
-  int64_t submit(const std::string& type, const std::string& text, double ttl_s = 0) {
-    QueuedMessage queued = manager_->journal_new(*message(type, text), ttl_s);
-    int64_t id = queued.record.id;
-    EXPECT_TRUE(manager_->accept(std::move(queued)));
-    return id;
-  }
-
-  void at(double seconds_after_start) {
-    clock_.set(core::Clock::time_point(std::chrono::duration_cast<core::Clock::time_point::duration>(
-        std::chrono::duration<double>(kStart + seconds_after_start))));
-  }
-
   // Frames for one transmission; every test frame fits `room` bytes.
   std::vector<Frame> request(uint32_t room, uint32_t frames = 1, int32_t dest = kAnyDestination,
                              bool ack = true) {
@@ -126,18 +107,6 @@ class QueueTest : public ::testing::Test {
     for (const auto& m : codec_.decode(frame.bytes)) types.push_back(m->GetDescriptor()->full_name());
     return types;
   }
-
-  int count(QueueEventKind kind) {
-    int n = 0;
-    for (const auto& e : journal_.events()) n += e.kind == kind;
-    return n;
-  }
-
-  fs::path dir_;
-  dccl::Codec codec_;
-  core::SimulatedClock clock_{core::Clock::time_point(std::chrono::seconds(static_cast<int64_t>(kStart)))};
-  MemoryJournal journal_;
-  std::unique_ptr<QueueManager> manager_;
 };
 
 TEST_F(QueueTest, HigherValueBaseWinsThenTheOtherQueueCatchesUp) {
