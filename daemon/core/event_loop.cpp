@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "core/core_thread.h"
+
 namespace acomms::core {
 
 EventLoop::EventLoop() : keep_running_(asio::make_work_guard(context_)) {}
@@ -9,7 +11,13 @@ EventLoop::EventLoop() : keep_running_(asio::make_work_guard(context_)) {}
 EventLoop::~EventLoop() { stop(); }
 
 void EventLoop::start() {
-  thread_ = std::thread([this] {
+  // start() returns once the thread is marked: from then on, a call into
+  // core state from any other thread fails its assertion (core_thread.h).
+  std::promise<void> marked;
+  std::future<void> marked_future = marked.get_future();
+  thread_ = std::thread([this, &marked] {
+    CoreThreadMark mark;
+    marked.set_value();
     // A handler that throws is a bug in the core; log it and keep the link
     // running rather than take the daemon down with queued data in memory.
     for (;;) {
@@ -21,6 +29,7 @@ void EventLoop::start() {
       }
     }
   });
+  marked_future.wait();
 }
 
 void EventLoop::stop() {

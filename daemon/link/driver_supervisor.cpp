@@ -4,6 +4,8 @@
 
 #include <cstdio>
 
+#include "core/core_thread.h"
+
 namespace acomms::link {
 
 SupervisorOptions SupervisorOptions::from_config(const v1::DriverConfig& config) {
@@ -49,6 +51,7 @@ DriverSupervisor::~DriverSupervisor() {
 }
 
 void DriverSupervisor::start(DriverCallbacks callbacks) {
+  ACOMMS_ASSERT_CORE_THREAD();
   stop();
   callbacks_ = std::move(callbacks);
   backoff_.reset();
@@ -57,6 +60,7 @@ void DriverSupervisor::start(DriverCallbacks callbacks) {
 }
 
 void DriverSupervisor::stop() {
+  ACOMMS_ASSERT_CORE_THREAD();
   scheduler_.cancel(work_task_);
   scheduler_.cancel(restart_task_);
   work_task_ = restart_task_ = 0;
@@ -98,6 +102,7 @@ void DriverSupervisor::schedule_work() {
 }
 
 void DriverSupervisor::work() {
+  ACOMMS_ASSERT_CORE_THREAD();
   if (status_.state != DriverState::kRunning || !driver_) return;
   try {
     driver_->do_work();
@@ -116,6 +121,7 @@ void DriverSupervisor::work() {
 }
 
 void DriverSupervisor::initiate_transmission(const v1::ModemTransmission& transmission) {
+  ACOMMS_ASSERT_CORE_THREAD();
   if (status_.state != DriverState::kRunning || !driver_) {
     std::string why = "driver " + options_.driver_name + " is " +
                       describe(status_, scheduler_.clock().now());

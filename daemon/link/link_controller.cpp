@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "core/core_thread.h"
+
 namespace acomms::link {
 
 LinkController::LinkController(int32_t own_id, queue::QueueManager& queues, mac::Mac& mac, Driver& driver,
@@ -9,6 +11,7 @@ LinkController::LinkController(int32_t own_id, queue::QueueManager& queues, mac:
     : own_id_(own_id), queues_(queues), mac_(mac), driver_(driver), deliver_(std::move(deliver)) {}
 
 void LinkController::start() {
+  ACOMMS_ASSERT_CORE_THREAD();
   DriverCallbacks callbacks;
   callbacks.on_receive = [this](const v1::ModemTransmission& t) { on_receive(t); };
   callbacks.on_data_request = [this](v1::ModemTransmission* t) { on_data_request(t); };
@@ -32,11 +35,13 @@ void LinkController::start() {
 }
 
 void LinkController::stop() {
+  ACOMMS_ASSERT_CORE_THREAD();
   mac_.stop();
   driver_.stop();
 }
 
 void LinkController::on_data_request(v1::ModemTransmission* transmission) {
+  ACOMMS_ASSERT_CORE_THREAD();
   queue::DataRequest request;
   request.dest = transmission->has_dest() ? transmission->dest() : queue::kAnyDestination;
   request.max_frame_bytes = transmission->max_frame_bytes();
@@ -63,6 +68,7 @@ void LinkController::on_data_request(v1::ModemTransmission* transmission) {
 }
 
 void LinkController::on_receive(const v1::ModemTransmission& transmission) {
+  ACOMMS_ASSERT_CORE_THREAD();
   mac_.on_receive(transmission);
   if (transmission.type() == v1::ModemTransmission::ACK) {
     if (transmission.dest() != own_id_) return;

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "mac/blank_slot.h"
+#include "core/core_thread.h"
 
 namespace acomms::mac {
 namespace {
@@ -43,6 +44,7 @@ AutoDiscoveryMac::AutoDiscoveryMac(const AutoDiscoveryConfig& config, int32_t ow
 AutoDiscoveryMac::~AutoDiscoveryMac() { stop(); }
 
 void AutoDiscoveryMac::start(Transmit transmit) {
+  ACOMMS_ASSERT_CORE_THREAD();
   stop();
   transmit_ = std::move(transmit);
   running_ = true;
@@ -50,12 +52,14 @@ void AutoDiscoveryMac::start(Transmit transmit) {
 }
 
 void AutoDiscoveryMac::stop() {
+  ACOMMS_ASSERT_CORE_THREAD();
   cancel_task();
   running_ = false;
   in_cycle_ = false;
 }
 
 void AutoDiscoveryMac::set_cycle(const Cycle&) {
+  ACOMMS_ASSERT_CORE_THREAD();
   throw std::invalid_argument(
       "the auto_discovery MAC builds its cycle from the nodes it hears and cannot be given "
       "one; use the \"fixed\" MAC for a configured cycle");
@@ -86,6 +90,7 @@ AutoDiscoveryMac::Activity AutoDiscoveryMac::activity() const {
 }
 
 void AutoDiscoveryMac::on_receive(const v1::ModemTransmission& transmission) {
+  ACOMMS_ASSERT_CORE_THREAD();
   if (!running_) return;
   const int32_t id = transmission.src();
   if (id < 1 || id == own_id_) return;
@@ -125,6 +130,7 @@ void AutoDiscoveryMac::begin_cycle(CycleGrid::CycleStart start) {
 }
 
 void AutoDiscoveryMac::begin_slot(size_t index) {
+  ACOMMS_ASSERT_CORE_THREAD();
   task_.reset();
   slot_index_ = index;
   const core::Clock::time_point slot_start = cycle_start_ + slot_ * static_cast<int64_t>(index);

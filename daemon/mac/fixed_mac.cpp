@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "core/core_thread.h"
+
 namespace acomms::mac {
 namespace {
 
@@ -35,6 +37,7 @@ void FixedMac::adopt(Cycle cycle) {
 }
 
 void FixedMac::start(Transmit transmit) {
+  ACOMMS_ASSERT_CORE_THREAD();
   stop();
   transmit_ = std::move(transmit);
   if (pending_) adopt(*std::exchange(pending_, std::nullopt));
@@ -42,11 +45,13 @@ void FixedMac::start(Transmit transmit) {
 }
 
 void FixedMac::stop() {
+  ACOMMS_ASSERT_CORE_THREAD();
   if (task_) scheduler_.cancel(*task_);
   task_.reset();
 }
 
 void FixedMac::set_cycle(const Cycle& cycle) {
+  ACOMMS_ASSERT_CORE_THREAD();
   check_cycle(cycle, "cycle");
   pending_ = cycle;
 }
@@ -69,6 +74,7 @@ void FixedMac::schedule_slot(size_t index, core::Clock::time_point cycle_start) 
 }
 
 void FixedMac::begin_slot(size_t index, core::Clock::time_point cycle_start) {
+  ACOMMS_ASSERT_CORE_THREAD();
   task_.reset();
   if (index == 0 && pending_) {
     // A boundary of the old grid: switch, and wait for the new grid's next

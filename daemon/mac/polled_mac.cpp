@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "core/core_thread.h"
+
 namespace acomms::mac {
 
 PolledMac::PolledMac(Cycle cycle, core::Scheduler& scheduler)
@@ -12,6 +14,7 @@ PolledMac::PolledMac(Cycle cycle, core::Scheduler& scheduler)
 PolledMac::~PolledMac() { stop(); }
 
 void PolledMac::start(Transmit transmit) {
+  ACOMMS_ASSERT_CORE_THREAD();
   stop();
   transmit_ = std::move(transmit);
   if (pending_) cycle_ = *std::exchange(pending_, std::nullopt);
@@ -20,16 +23,19 @@ void PolledMac::start(Transmit transmit) {
 }
 
 void PolledMac::stop() {
+  ACOMMS_ASSERT_CORE_THREAD();
   if (task_) scheduler_.cancel(*task_);
   task_.reset();
 }
 
 void PolledMac::set_cycle(const Cycle& cycle) {
+  ACOMMS_ASSERT_CORE_THREAD();
   check_cycle(cycle, "cycle");
   pending_ = cycle;
 }
 
 void PolledMac::begin_slot(size_t index, core::Clock::time_point when) {
+  ACOMMS_ASSERT_CORE_THREAD();
   task_.reset();
   // A cycle boundary: the place where a new cycle may take over.
   if (index == 0 && pending_) cycle_ = *std::exchange(pending_, std::nullopt);

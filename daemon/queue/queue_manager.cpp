@@ -10,6 +10,8 @@
 #include <chrono>
 #include <set>
 
+#include "core/core_thread.h"
+
 namespace acomms::queue {
 namespace {
 
@@ -207,6 +209,7 @@ QueuedMessage QueueManager::prepare_new(const pb::Message& message, double ttl_s
 }
 
 bool QueueManager::accept(QueuedMessage message) {
+  ACOMMS_ASSERT_CORE_THREAD();
   TypeState& state = *by_name_.at(message.record.type);
   double now = clock_.now_seconds();
   std::optional<QueuedMessage> dropped;
@@ -222,6 +225,7 @@ bool QueueManager::accept(QueuedMessage message) {
 }
 
 void QueueManager::expire() {
+  ACOMMS_ASSERT_CORE_THREAD();
   double now = clock_.now_seconds();
   for (auto& [id, state] : by_id_) {
     for (const QueuedMessage& m : state.queue->take_expired(now)) {
@@ -286,6 +290,7 @@ QueueManager::TypeState* QueueManager::contest(std::vector<Contender>& field, do
 }
 
 std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
+  ACOMMS_ASSERT_CORE_THREAD();
   double now = clock_.now_seconds();
   // Whatever the last transmission carried and was not acknowledged goes
   // back into the contest: this is its next opportunity.
@@ -329,6 +334,7 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
 }
 
 void QueueManager::on_ack(uint64_t frame_id) {
+  ACOMMS_ASSERT_CORE_THREAD();
   auto it = in_flight_.find(frame_id);
   if (it == in_flight_.end()) {
     spdlog::debug("queue: ack for frame {} that awaits none (late or duplicate)", frame_id);
@@ -345,6 +351,7 @@ void QueueManager::on_ack(uint64_t frame_id) {
 }
 
 bool QueueManager::cancel(int64_t id, const std::string& reason) {
+  ACOMMS_ASSERT_CORE_THREAD();
   double now = clock_.now_seconds();
   for (auto& [dccl_id, state] : by_id_) {
     if (std::optional<QueuedMessage> taken = state.queue->take(id)) {
@@ -356,6 +363,7 @@ bool QueueManager::cancel(int64_t id, const std::string& reason) {
 }
 
 std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32_t transmission_src) {
+  ACOMMS_ASSERT_CORE_THREAD();
   double now = clock_.now_seconds();
   std::vector<ReceivedMessage> out;
   size_t offset = 0;
@@ -405,6 +413,7 @@ std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32
 }
 
 size_t QueueManager::flush(const std::string& type, const std::string& reason) {
+  ACOMMS_ASSERT_CORE_THREAD();
   auto it = by_name_.find(type);
   if (it == by_name_.end()) throw UnknownTypeError("no queue for type " + type);
   TypeState& state = *it->second;
@@ -431,6 +440,7 @@ std::vector<const Queue*> QueueManager::queues() const {
 }
 
 QueueStats QueueManager::stats(const std::string& type) const {
+  ACOMMS_ASSERT_CORE_THREAD();
   const TypeState& state = *by_name_.at(type);
   QueueStats stats = state.stats;
   stats.refused = state.refused.load(std::memory_order_relaxed);

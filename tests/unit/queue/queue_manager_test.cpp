@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/event_loop.h"
 #include "dccl/hex.h"
 #include "queue_manager_fixture.h"
 
@@ -475,6 +476,21 @@ TEST_F(QueueTest, UnknownTypesAndBadConfigAreClearErrors) {
   v1::QueueConfig bad_ttl;
   bad_ttl.mutable_defaults()->set_ttl_s(0);
   EXPECT_THROW(QueueManager(codec_, bad_ttl, 1, clock_, journal_), std::invalid_argument);
+}
+
+// The queues are lock-free because the core thread owns them: a frame built
+// from a gRPC thread while the core runs would race the link. The rule is
+// asserted, so such a call aborts instead of corrupting a queue.
+TEST_F(QueueTest, BuildingFramesFromAnotherThreadWhileTheCoreRunsFailsItsAssertion) {
+  make();
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_DEATH(
+      {
+        core::EventLoop core;
+        core.start();
+        request(64);
+      },
+      "build_frames.* must run on the core thread");
 }
 
 }  // namespace
