@@ -14,6 +14,7 @@
 #include <fstream>
 
 #include "core/event_loop.h"
+#include "core/logging.h"
 #include "dccl/hex.h"
 #include "queue_manager_fixture.h"
 
@@ -486,6 +487,7 @@ TEST_F(QueueTest, BuildingFramesFromAnotherThreadWhileTheCoreRunsFailsItsAsserti
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   EXPECT_DEATH(
       {
+        core::configure_logging(v1::INFO);  // the daemon's logger: stderr
         core::EventLoop core;
         core.start();
         request(64);
