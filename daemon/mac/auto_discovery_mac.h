@@ -1,5 +1,5 @@
 #pragma once
-// Decentralized TDMA with passive auto-discovery (the seed's section 2.4.3;
+// Decentralized TDMA with passive auto-discovery (Schneider (2013), section 2.4.3;
 // goby-acomms had a similar mode). No master, no configured cycle and no
 // control messages: each node builds its cycle from the nodes it has heard.
 //
@@ -18,8 +18,8 @@
 //   every cycle length is a whole number of slots from the same reference,
 //   all nodes' slot boundaries coincide, whatever their views.
 // * Blank position: blank_slot_index (blank_slot.h). By default (kFigure)
-//   the last slot, or the penultimate one in "excited" cycles, as the seed's
-//   Figure 2.10 and Table 2.7 have it (its equations 2.6-2.7 disagree and
+//   the last slot, or the penultimate one in "excited" cycles, as Schneider
+//   (2013), Figure 2.10 and Table 2.7, has it (its equations 2.6-2.7 disagree and
 //   are not followed); cycle k is excited when H(k, S) mod C == 0 (S: the
 //   sum of the known ids, C: the coolness, H: a fixed 64-bit mix).
 //   blank_slot.h also has goby-acomms' test (kCongruence) and kAnywhere,
@@ -53,7 +53,7 @@ namespace acomms::mac {
 struct AutoDiscoveryConfig {
   double slot_seconds = 10;
   int32_t rate = 0;
-  uint32_t coolness = 3;       // C >= 1; the seed recommends network size + 1
+  uint32_t coolness = 3;       // C >= 1; Schneider (2013) recommends network size + 1
   uint32_t expire_cycles = 5;  // >= 1
   BlankRule blank_rule = BlankRule::kFigure;
   std::optional<double> epoch;  // unset: midnight UTC

@@ -16,12 +16,13 @@
 //     x ^= x >> 30; x *= 0xbf58476d1ce4e5b9;
 //     x ^= x >> 27; x *= 0x94d049bb133111eb; x ^= x >> 31;   H = x
 //
-// kFigure (the default): the seed's Figure 2.10 and Table 2.7. The blank
-//     rests in the last slot and moves to the penultimate one when excited:
+// kFigure (the default): Schneider (2013), Figure 2.10 and Table 2.7. The
+//     blank rests in the last slot and moves to the penultimate one when
+//     excited:
 //         excited  <=>  H(k, S) mod C == 0
 //         b = n - 2 if excited, else n - 1.
-//     The seed's equations 2.6-2.7 disagree with its figure and table on
-//     the resting place; the figure and table are followed. (The seed's
+//     Equations 2.6-2.7 of Schneider (2013) disagree with its figure and
+//     table on the resting place; the figure and table are followed. (Its
 //     text gives no formula for "excited" that we could consult; a hash of
 //     k and S is the pseudo-random choice from exactly those inputs.)
 // kCongruence: the same placement with goby-acomms' test

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include <sstream>
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -12,18 +12,13 @@
 
 namespace {
 
+using acomms::testing::lines_of;
+
 std::string log_prefix(const std::string& name) {
   return ::testing::TempDir() + "mac_discovery_" + name + "_" + std::to_string(getpid());
 }
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-TEST(MacDiscoveryCli, SeedTable27Scenario) {
+TEST(MacDiscoveryCli, Schneider2013Table27Scenario) {
   acomms::testing::RunResult result = acomms::testing::run(
       ACOMMSCTL_BINARY,
       {"sim", "mac-discovery", "--ids", "1,2", "--slot", "15", "--coolness", "3", "--start", "0"},
