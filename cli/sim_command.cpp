@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -112,13 +113,11 @@ struct MacDiscoveryOptions {
   std::string sizes = "3-6";
   int trials = 200;
   double start_window_cycles = 4;
-  std::string blank_rule = "figure";
+  std::string blank_rule = mac::blank_rule_name(mac::kDefaultBlankRule);
 };
 
 mac::BlankRule blank_rule_of(const std::string& name) {
-  if (name == "figure") return mac::BlankRule::kFigure;
-  if (name == "congruence") return mac::BlankRule::kCongruence;
-  if (name == "anywhere") return mac::BlankRule::kAnywhere;
+  if (std::optional<mac::BlankRule> rule = mac::blank_rule_from_name(name)) return *rule;
   throw CLI::ValidationError("--blank-rule", "'" + name + "': use figure, congruence or anywhere");
 }
 
@@ -208,10 +207,11 @@ void add_mac_discovery_command(CLI::App* sim) {
       ->check(CLI::Range(1.0, 1e6))
       ->capture_default_str();
   command->add_option("--blank-rule", options.blank_rule,
-                      "Blank placement (daemon/mac/blank_slot.h): figure (last slot, penultimate "
-                      "when H(k, S) mod C == 0), congruence (the same, excited when k mod C == "
-                      "S mod C, as goby-acomms) or anywhere (excited: a pseudo-random slot "
-                      "before the last)")
+                      "Blank placement (daemon/mac/blank_slot.h): anywhere (excited: a "
+                      "pseudo-random slot before the last; the daemon's default too), figure "
+                      "(last slot, penultimate when H(k, S) mod C == 0, Schneider (2013) Table "
+                      "2.7) or congruence (the same, excited when k mod C == S mod C, as "
+                      "goby-acomms)")
       ->check(CLI::IsMember({"figure", "congruence", "anywhere"}))
       ->capture_default_str();
   command->add_option("--seed", options.seed, "Random seed (same seed, same output)")

@@ -21,6 +21,7 @@ namespace {
 using mac::AutoDiscoveryConfig;
 using mac::AutoDiscoveryMac;
 using mac::BlankRule;
+using mac::blank_rule_name;
 using mac::Nanoseconds;
 using time_point = core::Clock::time_point;
 using util::SplitMix64;
@@ -263,15 +264,6 @@ std::string cycle_text(const std::vector<int32_t>& cycle) {
     out += cycle[i] == 0 ? std::string("_") : std::to_string(cycle[i]);
   }
   return out + "]";
-}
-
-const char* blank_rule_name(BlankRule rule) {
-  switch (rule) {
-    case BlankRule::kFigure: return "figure";
-    case BlankRule::kCongruence: return "congruence";
-    case BlankRule::kAnywhere: return "anywhere";
-  }
-  return "?";
 }
 
 const char* action_name(NodeAction action) {

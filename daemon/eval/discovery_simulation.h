@@ -49,7 +49,7 @@ struct DiscoveryScenario {
   double slot_seconds = 15;
   uint32_t coolness = 3;
   uint32_t expire_cycles = 5;
-  mac::BlankRule blank_rule = mac::BlankRule::kFigure;
+  mac::BlankRule blank_rule = mac::kDefaultBlankRule;
   double p_collide = 1;
   uint64_t seed = 1;
   // Give up this long after the last power-on, in cycles of the full
@@ -104,7 +104,7 @@ struct DiscoveryMonteCarloConfig {
   int trials = 200;
   double slot_seconds = 15;
   uint32_t expire_cycles = 5;
-  mac::BlankRule blank_rule = mac::BlankRule::kFigure;
+  mac::BlankRule blank_rule = mac::kDefaultBlankRule;
   double start_window_cycles = 4;
   double horizon_cycles = 200;
   uint64_t seed = 1;

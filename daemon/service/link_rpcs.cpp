@@ -41,6 +41,7 @@ grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatu
     if (auto* discovery = dynamic_cast<const mac::AutoDiscoveryMac*>(&parts_.link.mac)) {
       known.clear();
       for (int32_t id : discovery->known_ids()) known.insert(id);
+      response->set_blank_rule(mac::blank_rule_name(discovery->blank_rule()));
     }
     for (int32_t id : known) response->add_known_nodes(id);
 

@@ -64,6 +64,7 @@ TEST(DiscoverySimulation, FigureRuleLockAndTheAnywhereRule) {
   scenario.start_s = {1000};
   scenario.coolness = 4;
   scenario.horizon_cycles = 100;
+  scenario.blank_rule = mac::BlankRule::kFigure;
   EXPECT_FALSE(simulate_discovery(scenario, false).converged_at_s.has_value());
   scenario.blank_rule = mac::BlankRule::kAnywhere;
   EXPECT_TRUE(simulate_discovery(scenario, false).converged_at_s.has_value());
