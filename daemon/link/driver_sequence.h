@@ -8,8 +8,8 @@
 // "nothing to send" when they give none, and goes out to broadcast when they
 // chose no destination; a poll for us is answered with our DATA; what the
 // queues should see is reported; DATA to us with ack_requested is
-// acknowledged in software. Two copies drift; the third (the Micro-Modem)
-// would have been a third.
+// acknowledged in software. Two copies drift, and the Micro-Modem would
+// have made three.
 //
 // The decision: a driver owns a DriverSequence (composition, not a base
 // class) and gives it the one thing that differs, how a transmission goes on
@@ -27,8 +27,8 @@
 //
 // Invariants: nothing reaches a callback before start() or after stop(); a
 // transmission the MAC started is answered by on_transmit_result exactly
-// once (failures here, success by the driver once it has gone); every
-// function runs on the core thread (asserted).
+// once (failures here, success by the driver once it has gone); transmitting,
+// receiving and reporting run on the core thread (asserted).
 
 #include <cstdint>
 #include <functional>

@@ -199,6 +199,7 @@ std::string SimDriver::transmit(ModemTransmission tx, bool report_result) {
 }
 
 void SimDriver::hear(const SimEnvelope& envelope) {
+  ACOMMS_ASSERT_CORE_THREAD();
   if (!sequence_.running() || envelope.sender == id_) return;
   std::optional<SimHearing> heard = hearing(envelope, position_, sound_speed_);
   if (!heard) {

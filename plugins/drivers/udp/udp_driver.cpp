@@ -85,6 +85,7 @@ std::string UdpDriver::send(ModemTransmission tx, bool report) {
 }
 
 void UdpDriver::on_datagram(std::string_view bytes, const std::string& from) {
+  ACOMMS_ASSERT_CORE_THREAD();
   if (sequence_.callbacks().on_raw) sequence_.callbacks().on_raw(bytes, false);
   ModemTransmission rx;
   // A transmission must parse and name its sender; anything else that
