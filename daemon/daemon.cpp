@@ -7,7 +7,6 @@
 
 #include "core/systemd_notify.h"
 #include "mac/mac_factory.h"
-#include "register_drivers.h"
 #include "message_definitions.h"
 #include "service/received_message.h"
 
@@ -70,7 +69,7 @@ Daemon::~Daemon() { stop(); }
 void Daemon::build_link() {
   const auto own_id = static_cast<int32_t>(config_.driver().modem_id());
   scheduler_ = std::make_unique<core::AsioScheduler>(core_->context(), clock_);
-  register_builtin_drivers(drivers_);
+  drivers_ = link::DriverRegistry::linked();  // every driver plugin linked in
   const std::string& name = config_.driver().name();
   auto known = drivers_.names();
   if (std::find(known.begin(), known.end(), name) == known.end()) {
