@@ -54,7 +54,7 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
                                               *events_, subscribers_});
 
   server_ = std::make_unique<service::GrpcServer>(
-      service::Endpoints{config_.grpc().unix_socket(), config_.grpc().tcp_listen()},
+      service::endpoints_of(config_.grpc()),
       std::vector<grpc::Service*>{api_.get()});
   server_->set_serving(true);
   core::systemd_notify("READY=1\nSTATUS=serving");
@@ -62,6 +62,10 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
 }
 
 Daemon::~Daemon() { stop(); }
+
+void Daemon::reload_tls() {
+  if (server_) server_->reload_tls();
+}
 
 // Driver, MAC and the glue between them and the queues. Configuration
 // mistakes (unknown driver, bad cycle) stop the start-up here; device

@@ -41,6 +41,9 @@ class Daemon {
   // and close the store. Idempotent.
   void stop();
 
+  // SIGHUP: re-reads the API's TLS certificates (logs the outcome).
+  void reload_tls();
+
  private:
   void schedule_expiry();
   void build_link();
