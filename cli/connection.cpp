@@ -1,8 +1,10 @@
 #include "connection.h"
 
+#include <grpc/support/log.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <stdexcept>
@@ -126,7 +128,16 @@ std::string tcp_probe(const std::shared_ptr<grpc::Channel>& channel, double time
   return result.error_message();
 }
 
+// gRPC writes a line of its own for a failed handshake ("E1123 ...
+// ssl_transport_security.cc:1501] Handshake failed with fatal error ...");
+// acommsctl says what went wrong in its own one line instead.
+void log_without_handshake_failures(gpr_log_func_args* args) {
+  if (std::string(args->message).rfind("Handshake failed", 0) == 0) return;
+  std::fprintf(stderr, "acommsctl: grpc: %s\n", args->message);
+}
+
 std::shared_ptr<grpc::Channel> connect_tcp(const GlobalOptions& options) {
+  gpr_set_log_function(log_without_handshake_failures);
   const std::string address = target_for(options.endpoint);
   auto fail = [&](const std::string& why) {
     return std::runtime_error("cannot reach acommsd at " + options.endpoint + ": " + why);
