@@ -35,6 +35,8 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
   definitions_ = std::make_unique<service::DefinitionLoader>(
       *codec_, *queues_, *writer_, (std::filesystem::path(config_.data_dir()) / "definitions").string());
   core_ = std::make_unique<core::EventLoop>();
+  submitter_ = std::make_unique<queue::Submitter>(
+      *queues_, [core = core_.get()](std::function<void()> work) { core->post(std::move(work)); });
   expiry_timer_ = std::make_unique<asio::steady_timer>(core_->context());
   build_link();
   core_->start();
@@ -51,7 +53,7 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
   facts.mac = config_.mac().name();
   facts.modem_id = config_.driver().modem_id();
   api_ = std::make_unique<service::AcommsService>(
-      std::move(facts), service::ServiceParts{*codec_, *queues_, *core_, {*mac_, *driver_, *link_}, *definitions_,
+      std::move(facts), service::ServiceParts{*codec_, *queues_, *submitter_, *core_, {*mac_, *driver_, *link_}, *definitions_,
                                               *events_, subscribers_});
 
   server_ = std::make_unique<service::GrpcServer>(
@@ -136,6 +138,7 @@ void Daemon::stop() {
   scheduler_.reset();
   expiry_timer_.reset();
   core_.reset();
+  submitter_.reset();
   definitions_.reset();
   queues_.reset();
   // Every event recorded so far reaches the disk before the store closes.

@@ -4,6 +4,8 @@
 //
 // Threads: journal_new() may run on any thread (it encodes and hands the
 // message to the journal); everything else runs on the core thread only.
+// A client's message comes in through Submitter::submit (submitter.h),
+// which runs journal_new and accept on their threads in order.
 //
 // The contest, at time t, for each place in a frame: a queue takes part if
 // it is out of blackout, has a message not awaiting an ack, that message
@@ -75,7 +77,8 @@ class QueueManager {
 
   // Makes a queue for every loaded type that has none yet (after the codec
   // loaded more definitions). Returns their names. Must not run
-  // concurrently with journal_new (the caller holds a lock for that).
+  // concurrently with journal_new: the caller holds
+  // Submitter::types_changing().
   std::vector<std::string> add_types();
 
   // Start-up: brings back what the journal holds (after a crash, messages
@@ -91,7 +94,7 @@ class QueueManager {
   QueuedMessage journal_new(const google::protobuf::Message& message, double ttl_s = 0) const;
 
   // The same without waiting for the commit, for callers that must not park
-  // a thread on the disk (the gRPC Submit). Checks and encodes here (and
+  // a thread on the disk (Submitter::submit). Checks and encodes here (and
   // throws as above); `journaled` then gets the message with its id once it
   // is durable, or the error that kept it from the disk, on the journal's
   // thread: it must be short and never wait (hand the message to the core

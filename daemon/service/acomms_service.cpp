@@ -15,7 +15,7 @@ grpc::Status AcommsService::GetStatus(grpc::ServerContext*, const v1::GetStatusR
   response->set_driver(facts_.driver);
   response->set_mac(facts_.mac);
   response->set_modem_id(facts_.modem_id);
-  std::shared_lock lock(definitions_);
+  auto stable = parts_.submitter.types_stable();
   response->set_dccl_types(static_cast<int32_t>(parts_.codec.types().size()));
   return grpc::Status::OK;
 }

@@ -66,7 +66,7 @@ grpc::Status AcommsService::LoadDefinitions(grpc::ServerContext*, const v1::Load
   }
   // No Submit may look a type up while types are added, and the core
   // thread (which decodes received frames) runs the load itself.
-  std::unique_lock lock(definitions_);
+  auto changing = parts_.submitter.types_changing();
   try {
     std::vector<const dccl::TypeInfo*> types =
         parts_.core.call([&] { return parts_.definitions.load(*request); });
@@ -79,7 +79,7 @@ grpc::Status AcommsService::LoadDefinitions(grpc::ServerContext*, const v1::Load
 
 grpc::Status AcommsService::ListTypes(grpc::ServerContext*, const v1::ListTypesRequest* request,
                                       v1::ListTypesResponse* response) {
-  std::shared_lock lock(definitions_);
+  auto stable = parts_.submitter.types_stable();
   if (request->types().empty()) {
     for (const dccl::TypeInfo* info : parts_.codec.types()) {
       fill_type(*info, request->fields(), request->descriptors(), response->add_types());

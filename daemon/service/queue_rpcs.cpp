@@ -25,7 +25,7 @@ grpc::Status AcommsService::ListQueued(grpc::ServerContext*, const v1::ListQueue
                                        v1::ListQueuedResponse* response) {
   size_t limit = 0;
   if (grpc::Status refused = page_limit(request->limit(), &limit); !refused.ok()) return refused;
-  std::shared_lock lock(definitions_);
+  auto stable = parts_.submitter.types_stable();
   if (!request->type().empty() && parts_.queues.find_queue(request->type()) == nullptr) {
     return no_queue(request->type());
   }
@@ -88,7 +88,7 @@ grpc::Status AcommsService::Cancel(grpc::ServerContext*, const v1::CancelRequest
 grpc::Status AcommsService::Flush(grpc::ServerContext*, const v1::FlushRequest* request,
                                   v1::FlushResponse* response) {
   if (request->type().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "name the type whose queue to flush"};
-  std::shared_lock lock(definitions_);
+  auto stable = parts_.submitter.types_stable();
   try {
     size_t removed = parts_.core.call([&] { return parts_.queues.flush(request->type(), "flushed by client"); });
     response->set_removed(static_cast<uint32_t>(removed));
@@ -100,7 +100,7 @@ grpc::Status AcommsService::Flush(grpc::ServerContext*, const v1::FlushRequest* 
 
 grpc::Status AcommsService::QueueStats(grpc::ServerContext*, const v1::QueueStatsRequest* request,
                                        v1::QueueStatsResponse* response) {
-  std::shared_lock lock(definitions_);
+  auto stable = parts_.submitter.types_stable();
   for (const std::string& type : request->types()) {
     if (parts_.queues.find_queue(type) == nullptr) {
       return no_queue(type);

@@ -14,7 +14,7 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
                                       grpc::ServerWriter<v1::ReceivedMessage>* writer) {
   Subscription::Filter filter;
   {
-    std::shared_lock lock(definitions_);
+    auto stable = parts_.submitter.types_stable();
     for (const std::string& type : request->types()) {
       if (parts_.codec.find_type(type) == nullptr) {
         return type_not_loaded(type);
