@@ -7,13 +7,14 @@
 // A client's message comes in through Submitter::submit (submitter.h),
 // which runs journal_new and accept on their threads in order.
 //
-// The contest, at time t, for each place in a frame: a queue takes part if
-// it is out of blackout, has a message not awaiting an ack, that message
-// fits in what is left of the frame, and its destination agrees with the
-// transmission's. The highest P = value_base * (t - t_last_sent) / ttl
-// wins; a tie goes to the queue that sent longest ago, then to the lower
-// DCCL id. The winner's message is appended and the contest runs again
-// until nothing fits.
+// On each transmission the queues contest every place in a frame: the
+// highest priority P = value_base * (t - t_last_sent) / ttl wins (the rules
+// in full open frame_building.cpp).
+//
+// One class, one file per idea: queue_manager.cpp makes the queues, brings
+// them back at start-up and holds the steps of a submit, expiry, Cancel and
+// Flush; frame_building.cpp the contest, build_frames and on_ack;
+// frame_receiving.cpp receive (unstitch, decode, filter).
 
 #include <google/protobuf/message.h>
 
