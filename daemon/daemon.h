@@ -61,7 +61,8 @@ class Daemon {
   // Submit's way into the queues, through the core thread.
   std::unique_ptr<queue::Submitter> submitter_;
   std::unique_ptr<asio::steady_timer> expiry_timer_;
-  // The link, on the core thread: driver (supervised), MAC, and the glue.
+  // The link, on the core thread: driver (supervised), MAC, and the
+  // LinkController that binds them to the queues.
   std::unique_ptr<core::AsioScheduler> scheduler_;
   link::DriverRegistry drivers_;
   std::unique_ptr<link::DriverSupervisor> driver_;

@@ -24,8 +24,9 @@
 
 namespace acomms::service {
 
-// Facts about the running daemon that GetStatus reports.
-struct DaemonFacts {
+// What this daemon is and runs with, fixed at start: what GetStatus reports
+// about it.
+struct DaemonIdentity {
   std::string version;
   std::string data_dir;
   int64_t schema_version = 0;
@@ -34,22 +35,25 @@ struct DaemonFacts {
   uint32_t modem_id = 0;
 };
 
-// The link's parts, read and changed on the core thread only.
-struct LinkParts {
+// The acoustic link: the MAC that cycles the slots, the supervised modem
+// driver, and the LinkController that binds them to the queues (what Goby
+// calls a binding). Read and changed on the core thread only.
+struct Link {
   mac::Mac& mac;
   link::DriverSupervisor& driver;
   link::LinkController& controller;
 };
 
-// What the service works on. Everything must outlive it.
-struct ServiceParts {
+// The node the service operates on: its layers, each owned by the daemon
+// and outliving the service.
+struct Node {
   dccl::Codec& codec;
   queue::QueueManager& queues;
   // The way in for a client's message, and the lock that keeps the codec's
   // types and the set of queues stable while a call reads them.
   queue::Submitter& submitter;
   core::EventLoop& core;
-  LinkParts link;
+  Link link;
   DefinitionLoader& definitions;
   queue::EventLogReader& events;
   SubscriberHub& subscribers;
@@ -60,7 +64,7 @@ struct ServiceParts {
 // wait cost more CPU in thread hand-offs than the Submit itself.
 class AcommsService final : public v1::Acomms::WithCallbackMethod_Submit<v1::Acomms::Service> {
  public:
-  AcommsService(DaemonFacts facts, ServiceParts parts);
+  AcommsService(DaemonIdentity identity, Node node);
 
   grpc::Status GetStatus(grpc::ServerContext*, const v1::GetStatusRequest*, v1::Status*) override;
 
@@ -95,8 +99,8 @@ class AcommsService final : public v1::Acomms::WithCallbackMethod_Submit<v1::Aco
   grpc::Status parse_submitted(const v1::SubmitRequest& request,
                                std::unique_ptr<google::protobuf::Message>* out) const;
 
-  DaemonFacts facts_;
-  ServiceParts parts_;
+  DaemonIdentity identity_;
+  Node node_;
   std::chrono::steady_clock::time_point started_;
   mutable JsonReader json_reader_;
 };

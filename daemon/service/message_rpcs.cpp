@@ -31,13 +31,13 @@ grpc::Status AcommsService::parse_message(const std::string& type, const std::st
                                           const std::string* json,
                                           std::unique_ptr<google::protobuf::Message>* out) const {
   using grpc::StatusCode;
-  if (parts_.codec.find_type(type) == nullptr) {
+  if (node_.codec.find_type(type) == nullptr) {
     return type_not_loaded(type);
   }
   if ((payload && payload->size() > kMaxMessageBytes) || (json && json->size() > kMaxMessageBytes)) {
     return {StatusCode::INVALID_ARGUMENT, "message is larger than " + std::to_string(kMaxMessageBytes) + " bytes"};
   }
-  std::unique_ptr<google::protobuf::Message> message = parts_.codec.new_message(type);
+  std::unique_ptr<google::protobuf::Message> message = node_.codec.new_message(type);
   if (payload) {
     if (!message->ParsePartialFromString(*payload)) {
       return {StatusCode::INVALID_ARGUMENT, "payload is not a serialized " + type};
@@ -61,7 +61,7 @@ grpc::Status AcommsService::parse_submitted(const v1::SubmitRequest& request,
   }
   // Released before the submit, which takes it again: types only grow, so
   // the parsed message's type is still there.
-  auto stable = parts_.submitter.types_stable();
+  auto stable = node_.submitter.types_stable();
   return parse_message(
       request.type(), request.message_case() == v1::SubmitRequest::kPayload ? &request.payload() : nullptr,
       request.message_case() == v1::SubmitRequest::kJson ? &request.json() : nullptr, out);
@@ -79,7 +79,7 @@ grpc::ServerUnaryReactor* AcommsService::Submit(grpc::CallbackServerContext* con
     reactor->Finish(parsed);
     return reactor;
   }
-  parts_.submitter.submit(*message, request->ttl_s(), [response, reactor](queue::SubmitResult result) {
+  node_.submitter.submit(*message, request->ttl_s(), [response, reactor](queue::SubmitResult result) {
     if (result.ok()) response->set_message_id(result.message_id);
     reactor->Finish(submit_status(result));
   });
@@ -88,7 +88,7 @@ grpc::ServerUnaryReactor* AcommsService::Submit(grpc::CallbackServerContext* con
 
 grpc::Status AcommsService::Encode(grpc::ServerContext*, const v1::EncodeRequest* request,
                                    v1::EncodeResponse* response) {
-  auto stable = parts_.submitter.types_stable();
+  auto stable = node_.submitter.types_stable();
   std::unique_ptr<google::protobuf::Message> message;
   grpc::Status parsed = parse_message(
       request->type(), request->message_case() == v1::EncodeRequest::kPayload ? &request->payload() : nullptr,
@@ -99,7 +99,7 @@ grpc::Status AcommsService::Encode(grpc::ServerContext*, const v1::EncodeRequest
             request->type() + ": required field(s) missing: " + message->InitializationErrorString()};
   }
   try {
-    response->set_encoded(parts_.codec.encode(*message));
+    response->set_encoded(node_.codec.encode(*message));
   } catch (const dccl::Error& e) {
     return {grpc::StatusCode::INVALID_ARGUMENT, e.what()};
   }
@@ -113,16 +113,16 @@ grpc::Status AcommsService::Decode(grpc::ServerContext*, const v1::DecodeRequest
             "encoded is larger than " + std::to_string(kMaxMessageBytes) + " bytes"};
   }
   if (request->encoded().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "encoded is empty"};
-  auto stable = parts_.submitter.types_stable();
+  auto stable = node_.submitter.types_stable();
   try {
     std::vector<std::unique_ptr<google::protobuf::Message>> messages;
     if (request->type().empty()) {
-      messages = parts_.codec.decode(request->encoded());
+      messages = node_.codec.decode(request->encoded());
     } else {
-      if (parts_.codec.find_type(request->type()) == nullptr) {
+      if (node_.codec.find_type(request->type()) == nullptr) {
         return type_not_loaded(request->type());
       }
-      messages.push_back(parts_.codec.decode_as(request->type(), request->encoded()));
+      messages.push_back(node_.codec.decode_as(request->type(), request->encoded()));
     }
     for (const auto& message : messages) {
       v1::DecodedMessage* out = response->add_messages();
