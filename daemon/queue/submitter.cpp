@@ -1,5 +1,6 @@
 #include "queue/submitter.h"
 
+#include <atomic>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -26,6 +27,22 @@ std::string store_failure(const std::exception_ptr& error) {
   }
 }
 
+// Why journal_new refused a message before anything was stored.
+SubmitResult refusal_of(const std::exception_ptr& error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const UnknownTypeError& e) {
+    return refused(Error::kUnknownType, e.what());
+  } catch (const QueueFullError& e) {
+    return refused(Error::kQueueFull, e.what());
+  } catch (const dccl::Error& e) {
+    return refused(Error::kInvalidMessage, e.what());
+  } catch (...) {
+    // The journal refused the write outright: the store is stopping.
+    return refused(Error::kStoreUnavailable, store_failure(error));
+  }
+}
+
 }  // namespace
 
 Submitter::Submitter(QueueManager& queues, PostToCore post_to_core)
@@ -35,13 +52,18 @@ void Submitter::submit(const google::protobuf::Message& message, double ttl_s, D
   // Shared with the journal's completion, and still ours to call when
   // journal_new throws before it hands the completion to the journal.
   auto answer = std::make_shared<Done>(std::move(done));
+  // Set once the completion runs: a journal that completes inline (in
+  // tests, MemoryJournal) runs it inside journal_new, and whatever it
+  // throws then is not a refusal to answer a second time.
+  auto completing = std::make_shared<std::atomic<bool>>(false);
   // Refused before anything was stored: answered once the lock is released,
   // so that the answer never runs while this holds up a LoadDefinitions.
   std::optional<SubmitResult> refusal;
   {
     auto stable = types_stable();
     try {
-      queues_.journal_new(message, ttl_s, [this, answer](QueuedMessage queued, std::exception_ptr error) {
+      queues_.journal_new(message, ttl_s, [this, answer, completing](QueuedMessage queued, std::exception_ptr error) {
+        completing->store(true);
         // On the store writer's thread: hand on quickly, never wait.
         if (error) {
           (*answer)(refused(Error::kStoreUnavailable, store_failure(error)));
@@ -50,15 +72,9 @@ void Submitter::submit(const google::protobuf::Message& message, double ttl_s, D
         auto durable = std::make_shared<QueuedMessage>(std::move(queued));
         post_to_core_([this, durable, answer] { accept(std::move(*durable), *answer); });
       });
-    } catch (const UnknownTypeError& e) {
-      refusal = refused(Error::kUnknownType, e.what());
-    } catch (const QueueFullError& e) {
-      refusal = refused(Error::kQueueFull, e.what());
-    } catch (const dccl::Error& e) {
-      refusal = refused(Error::kInvalidMessage, e.what());
-    } catch (const std::exception& e) {
-      // The journal refused the write outright: the store is stopping.
-      refusal = refused(Error::kStoreUnavailable, std::string("store: ") + e.what());
+    } catch (...) {
+      if (completing->load()) throw;
+      refusal = refusal_of(std::current_exception());
     }
   }
   if (refusal) (*answer)(std::move(*refusal));
