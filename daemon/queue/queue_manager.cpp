@@ -160,12 +160,6 @@ void QueueManager::restore() {
   }
 }
 
-QueuedMessage QueueManager::journal_new(const pb::Message& message, double ttl_s) const {
-  QueuedMessage queued = prepare_new(message, ttl_s);
-  queued.record.id = journal_.append(queued.record);
-  return queued;
-}
-
 void QueueManager::journal_new(const pb::Message& message, double ttl_s, Journaled journaled) const {
   auto queued = std::make_shared<QueuedMessage>(prepare_new(message, ttl_s));
   journal_.append(queued->record, [queued, journaled = std::move(journaled)](int64_t id, std::exception_ptr error) {
