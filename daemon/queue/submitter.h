@@ -61,11 +61,13 @@ class Submitter {
   // Receives a submit's result: on the caller's thread (refused before
   // storing), the store writer's thread (not stored) or the core thread
   // (queued, or refused by a queue that filled meanwhile). Must be short
-  // and must not wait.
+  // and must not wait (nor take types_changing()).
   using Done = std::function<void(SubmitResult)>;
 
   // `queues` must outlive the submitter, and so must the core that
   // `post_to_core` reaches (or it must drop work posted after it stopped).
+  // The submitter must outlive every submit not yet answered (the daemon
+  // shuts its gRPC server down first).
   Submitter(QueueManager& queues, PostToCore post_to_core);
 
   // Any thread. Fills the message's unset source and time roles, encodes

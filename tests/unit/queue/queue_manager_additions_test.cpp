@@ -12,6 +12,7 @@
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 
 #include "queue_manager_fixture.h"
 
@@ -329,6 +330,22 @@ TEST_F(QueueAdditionsTest, SubmitFillsTheRolesAndAnswersWithTheIdOnceQueued) {
   EXPECT_EQ(journal_.stored(), 1u);
   EXPECT_EQ(manager_->find_queue("qa.Status")->size(), 1u);
   EXPECT_GT(submit("qa.Status", "value: 1"), result.message_id);
+}
+
+// MemoryJournal completes inside the submit; what the answer itself throws
+// there belongs to its caller and must not come back as a second answer.
+TEST_F(QueueAdditionsTest, SubmitAnswersOnceEvenWhenTheAnswerThrows) {
+  make();
+  int answers = 0;
+  EXPECT_THROW(submitter_->submit(*message("qa.Status", "value: 1"), 0,
+                                  [&answers](const SubmitResult& result) {
+                                    ++answers;
+                                    EXPECT_TRUE(result.ok()) << result.text;
+                                    throw std::runtime_error("the client went away");
+                                  }),
+               std::runtime_error);
+  EXPECT_EQ(answers, 1);
+  EXPECT_EQ(manager_->find_queue("qa.Status")->size(), 1u);
 }
 
 }  // namespace
