@@ -1,4 +1,4 @@
-// The glue between driver, MAC and queues: data requests filled from the
+// The LinkController, which binds driver, MAC and queues: data requests filled from the
 // queues, ACK frame indices mapped back to queue frames, received frames
 // split and delivered, slots handed to the driver.
 
