@@ -12,7 +12,7 @@
 #include "acomms/v1/acomms.grpc.pb.h"
 #include "rpc_error.h"
 #include "tls_probe.h"
-#include "tls/pem_files.h"
+#include "core/pem_files.h"
 
 namespace acomms::cli {
 namespace {
@@ -43,11 +43,11 @@ TlsPem read_tls_files(const GlobalOptions& options) {
   }
   std::time_t now = std::time(nullptr);
   TlsPem pem;
-  if (!options.ca_file.empty()) pem.ca = tls::read_ca_certificates({"--ca", options.ca_file}, now);
+  if (!options.ca_file.empty()) pem.ca = core::read_ca_certificates({"--ca", options.ca_file}, now);
   if (!options.cert_file.empty()) {
-    tls::PemFile cert{"--cert", options.cert_file};
-    pem.cert = tls::read_certificate(cert, now);
-    pem.key = tls::read_private_key({"--key", options.key_file}, pem.cert, cert);
+    core::PemFile cert{"--cert", options.cert_file};
+    pem.cert = core::read_certificate(cert, now);
+    pem.key = core::read_private_key({"--key", options.key_file}, pem.cert, cert);
   }
   return pem;
 }

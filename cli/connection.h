@@ -19,7 +19,7 @@ std::string default_socket();
 std::string target_for(const std::string& endpoint);
 
 // Connects within --timeout; throws std::runtime_error("cannot reach
-// acommsd at ...: reason") otherwise, or tls::PemFileError naming a TLS
+// acommsd at ...: reason") otherwise, or core::PemFileError naming a TLS
 // file (--ca, --cert, --key) that cannot be used.
 std::shared_ptr<grpc::Channel> connect(const GlobalOptions& options);
 

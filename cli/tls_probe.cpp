@@ -54,7 +54,7 @@ struct SslFree {
   void operator()(SSL* ssl) const { SSL_free(ssl); }
 };
 
-// Loads the PEM texts (already checked by tls::read_* in connection.cpp).
+// Loads the PEM texts (already checked by core::read_* in connection.cpp).
 bool configure(SSL_CTX* ctx, const TlsPem& pem) {
   SSL_CTX_set_verify(ctx, SSL_VERIFY_PEER, nullptr);
   if (pem.ca.empty()) {

@@ -16,7 +16,7 @@
 
 #include "acomms/v1/acomms.grpc.pb.h"
 #include "service/tls_refusal_log.h"
-#include "tls/pem_files.h"
+#include "core/pem_files.h"
 
 namespace acomms::service {
 namespace {
@@ -50,7 +50,7 @@ std::shared_ptr<grpc::ServerCredentials> tcp_credentials(const Endpoints& endpoi
   }
   try {
     tls = std::make_unique<TlsCertificates>(*endpoints.tls);
-  } catch (const tls::PemFileError& e) {
+  } catch (const core::PemFileError& e) {
     throw std::runtime_error(std::string("cannot serve TLS on ") + endpoints.tcp_listen + ": " + e.what());
   }
   log_tls_refusals(*endpoints.tls);
@@ -138,7 +138,7 @@ void GrpcServer::reload_tls() {
   try {
     tls_->reload();
     spdlog::info("grpc: reloaded TLS certificates for new connections: {}", tls_->description());
-  } catch (const tls::PemFileError& e) {
+  } catch (const core::PemFileError& e) {
     spdlog::error("grpc: reload failed, still serving the previous TLS certificates: {}", e.what());
   }
 }

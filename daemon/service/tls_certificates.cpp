@@ -5,7 +5,7 @@
 
 #include <ctime>
 
-#include "tls/pem_files.h"
+#include "core/pem_files.h"
 
 namespace acomms::service {
 namespace {
@@ -29,19 +29,19 @@ class FetchedSslCredentials final : public grpc::ServerCredentials {
 }  // namespace
 
 TlsCertificates::TlsCertificates(const v1::TlsConfig& files) : files_(files), pending_(load()) {
-  description_ = tls::describe_certificate(pending_->cert);
+  description_ = core::describe_certificate(pending_->cert);
 }
 
 TlsCertificates::~TlsCertificates() = default;
 
 TlsCertificates::Files TlsCertificates::load() const {
   std::time_t now = std::time(nullptr);
-  tls::PemFile cert{"grpc.tls.cert_file", files_.cert_file()};
+  core::PemFile cert{"grpc.tls.cert_file", files_.cert_file()};
   Files loaded;
-  loaded.cert = tls::read_certificate(cert, now);
-  loaded.key = tls::read_private_key({"grpc.tls.key_file", files_.key_file()}, loaded.cert, cert);
+  loaded.cert = core::read_certificate(cert, now);
+  loaded.key = core::read_private_key({"grpc.tls.key_file", files_.key_file()}, loaded.cert, cert);
   if (!files_.client_ca_file().empty()) {
-    loaded.client_ca = tls::read_ca_certificates({"grpc.tls.client_ca_file", files_.client_ca_file()}, now);
+    loaded.client_ca = core::read_ca_certificates({"grpc.tls.client_ca_file", files_.client_ca_file()}, now);
   }
   return loaded;
 }
@@ -49,7 +49,7 @@ TlsCertificates::Files TlsCertificates::load() const {
 void TlsCertificates::reload() {
   Files loaded = load();
   std::lock_guard lock(mutex_);
-  description_ = tls::describe_certificate(loaded.cert);
+  description_ = core::describe_certificate(loaded.cert);
   pending_ = std::move(loaded);
 }
 

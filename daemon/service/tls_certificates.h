@@ -29,7 +29,7 @@ namespace acomms::service {
 class TlsCertificates {
  public:
   // Reads and checks the files of `files` (grpc.tls); throws
-  // tls::PemFileError naming the file and the reason.
+  // core::PemFileError naming the file and the reason.
   explicit TlsCertificates(const v1::TlsConfig& files);
   ~TlsCertificates();
   TlsCertificates(const TlsCertificates&) = delete;
@@ -39,7 +39,7 @@ class TlsCertificates {
   std::shared_ptr<grpc::ServerCredentials> credentials();
 
   // Re-reads the files; on success new connections get them. Throws
-  // tls::PemFileError (the current certificates stay in use).
+  // core::PemFileError (the current certificates stay in use).
   void reload();
 
   // The latest certificate read ("/CN=..., valid until ..."), for the log.

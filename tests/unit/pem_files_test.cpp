@@ -1,8 +1,8 @@
-// tls::read_*: every unusable TLS file is refused with the setting, the path
+// core::read_*: every unusable TLS file is refused with the setting, the path
 // and the reason (expired when, valid from when, not PEM, another key).
 // Certificates are made here with OpenSSL, at fixed dates.
 
-#include "tls/pem_files.h"
+#include "core/pem_files.h"
 
 #include <gtest/gtest.h>
 #include <openssl/evp.h>
@@ -14,7 +14,7 @@
 #include <fstream>
 #include <memory>
 
-namespace acomms::tls {
+namespace acomms::core {
 namespace {
 
 namespace fs = std::filesystem;
@@ -150,4 +150,4 @@ TEST_F(PemFilesTest, AKeyOfAnotherCertificateOrNoKeyIsNamed) {
 }
 
 }  // namespace
-}  // namespace acomms::tls
+}  // namespace acomms::core

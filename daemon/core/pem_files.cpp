@@ -1,4 +1,4 @@
-#include "tls/pem_files.h"
+#include "core/pem_files.h"
 
 #include <openssl/err.h>
 #include <openssl/pem.h>
@@ -11,7 +11,7 @@
 #include <sstream>
 #include <vector>
 
-namespace acomms::tls {
+namespace acomms::core {
 namespace {
 
 struct BioFree {
@@ -127,4 +127,4 @@ std::string describe_certificate(const std::string& certificate_pem) {
   return subject(chain.front().get()) + ", valid until " + utc(X509_get0_notAfter(chain.front().get()));
 }
 
-}  // namespace acomms::tls
+}  // namespace acomms::core

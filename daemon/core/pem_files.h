@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace acomms::tls {
+namespace acomms::core {
 
 // Thrown with a message that starts with the setting and the path.
 class PemFileError : public std::runtime_error {
@@ -42,4 +42,4 @@ std::string read_private_key(const PemFile& file, const std::string& certificate
 // "CN=acommsd, valid until 2027-11-23 17:00:00 UTC": for the log.
 std::string describe_certificate(const std::string& certificate_pem);
 
-}  // namespace acomms::tls
+}  // namespace acomms::core
