@@ -13,6 +13,19 @@
 namespace acomms {
 
 Daemon::Daemon(const v1::Config& config) : config_(config) {
+  // A start that fails half way (the TCP port is taken, say) must stop what
+  // it started, in order: the link on the core thread, then the core. The
+  // members' destructors alone would stop the driver from this thread while
+  // the core still runs it.
+  try {
+    start();
+  } catch (...) {
+    stop();
+    throw;
+  }
+}
+
+void Daemon::start() {
   store_ = std::make_unique<store::Store>(config_.data_dir());
   std::vector<service::RecordedDefinition> api_definitions =
       service::DefinitionLoader::read_recorded(store_->db());

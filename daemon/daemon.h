@@ -46,6 +46,8 @@ class Daemon {
   void reload_tls();
 
  private:
+  // The constructor's work, in the order of the file comment.
+  void start();
   void schedule_expiry();
   void build_link();
 
