@@ -29,7 +29,8 @@ Result<ConfigParameter> parse_config_parameter(const Sentence& sentence) {
     reader.fail(ErrorKind::kBadField, sentence.address() + " field 1 (name) is empty");
   }
   // Missing value: an MM2 group header ("$CACFG,psk") prints no value (§4.4).
-  return reader.finish(ConfigParameter{reader.text(1), reader.rest(2)});
+  // Values are single fields; anything after field 2 is ignored.
+  return reader.finish(ConfigParameter{reader.text(1), reader.text(2)});
 }
 
 Sentence to_sentence(const ConfigQuery& query) { return Sentence{"CC", "CFQ", {query.name}}; }

@@ -110,6 +110,16 @@ std::string FieldReader::hex(size_t number, std::string_view name) {
   return std::move(bytes).value();
 }
 
+void append_fields(Sentence& sentence, std::string_view text) {
+  size_t start = 0;
+  while (true) {
+    size_t comma = text.find(',', start);
+    sentence.fields.emplace_back(text.substr(start, comma - start));
+    if (comma == std::string_view::npos) return;
+    start = comma + 1;
+  }
+}
+
 std::string format_real(double value) {
   // Fixed notation, never "1e+23": the readers accept no exponent. The
   // longest finite double in fixed form has ~330 characters.

@@ -55,6 +55,10 @@ class FieldReader {
   std::optional<Error> error_;
 };
 
+// Appends free text that may hold commas (FieldReader::rest) as the
+// fields it came from.
+void append_fields(Sentence& sentence, std::string_view text);
+
 // Numbers as the modem writes them: integers plainly, reals in their
 // shortest exact form ("-6.48", "26").
 std::string format_real(double value);

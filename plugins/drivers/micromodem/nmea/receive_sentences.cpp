@@ -41,7 +41,9 @@ Result<Acknowledgement> parse_acknowledgement(const Sentence& sentence) {
 }
 
 Sentence to_sentence(const TransactionMessage& message) {
-  return Sentence{"CA", "MSG", {message.type, message.value}};
+  Sentence sentence{"CA", "MSG", {message.type}};
+  append_fields(sentence, message.value);
+  return sentence;
 }
 
 Result<TransactionMessage> parse_transaction_message(const Sentence& sentence) {
@@ -51,7 +53,9 @@ Result<TransactionMessage> parse_transaction_message(const Sentence& sentence) {
 }
 
 Sentence to_sentence(const ModemError& error) {
-  return Sentence{"CA", "ERR", {error.time, error.module, error.number, error.message}};
+  Sentence sentence{"CA", "ERR", {error.time, error.module, error.number}};
+  append_fields(sentence, error.message);
+  return sentence;
 }
 
 Result<ModemError> parse_modem_error(const Sentence& sentence) {

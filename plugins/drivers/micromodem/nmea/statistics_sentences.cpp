@@ -111,10 +111,12 @@ Result<ReceiveStatistics> parse_receive_statistics(const Sentence& sentence) {
   s.noise = layout.real(28, "noise");
   s.carrier = layout.integer(29, "carrier");
   s.bandwidth = layout.integer(30, "bandwidth");
-  s.sequence = layout.integer(31, "sequence", -1);
-  s.data_rate = layout.integer(32, "data-frame rate", -1);
-  s.data_frames = layout.integer(33, "data frames", -1);
-  s.bad_data_frames = layout.integer(34, "bad data frames", -1);
+  if (s.version >= 7) {  // older layouts have no FDP fields: ignore any extra
+    s.sequence = layout.integer(31, "sequence", -1);
+    s.data_rate = layout.integer(32, "data-frame rate", -1);
+    s.data_frames = layout.integer(33, "data frames", -1);
+    s.bad_data_frames = layout.integer(34, "bad data frames", -1);
+  }
   s.field_count = sentence.fields.size();
   return reader.finish(s);
 }
@@ -135,8 +137,10 @@ Result<TransmitStatistics> parse_transmit_statistics(const Sentence& sentence) {
   FieldReader reader(sentence, {"CAXST"});
   reader.require(2);
   // Version 0 has no version field: its field 1 is the date (yyyymmdd).
+  // A first field of 0 or less is read as a (nonsense) date too, so that
+  // version 0 is never written as a version field.
   int first = static_cast<int>(reader.integer(1, "version or date", INT_MIN, INT_MAX));
-  bool versioned = first <= 19700000;
+  bool versioned = first > 0 && first <= 19700000;
   LayoutReader layout(reader, versioned);
   TransmitStatistics s;
   s.version = versioned ? first : 0;
@@ -155,7 +159,7 @@ Result<TransmitStatistics> parse_transmit_statistics(const Sentence& sentence) {
   s.frames_sent = layout.integer(14, "frames sent");
   s.packet_type = layout.integer(15, "packet type", kPacketUnknown);
   s.bytes = layout.integer(16, "bytes");
-  s.carrier_used = layout.integer(17, "carrier used");
+  if (s.version >= 7) s.carrier_used = layout.integer(17, "carrier used");
   s.field_count = sentence.fields.size();
   return reader.finish(s);
 }
