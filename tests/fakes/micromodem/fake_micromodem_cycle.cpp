@@ -142,8 +142,9 @@ void FakeMicroModem::data_timeout(uint64_t exchange_id, int frame) {
   report_error("DATA_TIMEOUT", std::to_string(frame), "Data timeout");
   if (!exchange_->frames.empty()) return transmit_exchange();  // sends what it has
   // Nothing to send: no transmission, $CAXST mode 4 (§5.8).
-  AcousticPacket nothing{PacketKind::kData, exchange_->cycle.rate, exchange_->cycle.source,
-                         exchange_->cycle.destination, false, 0, {}, {}};
+  const Cycle& c = exchange_->cycle;
+  AcousticPacket nothing{PacketKind::kData, c.rate, c.source, c.destination, c.ack,
+                         exchange_->frames_wanted, {}, {}};
   exchange_.reset();
   transmit_statistics(nothing, 4, 0, 0);
 }
