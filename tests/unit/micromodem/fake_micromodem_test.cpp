@@ -294,6 +294,36 @@ TEST_F(FakeMicroModemTest, Mm2StatisticsUseTheVersion8And7Layouts) {
   EXPECT_EQ(micromodem::parse_transmit_statistics(host_a_.first("CAXST")->sentence)->field_count, 17u);
 }
 
+TEST_F(FakeMicroModemTest, RevisionIsPrintedPeriodicallyOnlyWhileRevIsOn) {
+  run(60s);
+  EXPECT_EQ(host_a_.count("CAREV"), 2u) << "AUV and COPROC, once a minute";
+  host_a_.send(to_sentence(micromodem::ConfigParameter{"REV", "0"}, Talker::kHost));
+  run(1s);
+  host_a_.clear();
+  run(120s);
+  EXPECT_EQ(host_a_.count("CAREV"), 0u);
+}
+
+TEST_F(FakeMicroModemTest, BadFramesArePrintedAsBadCrcInFrameOrder) {
+  FakeModemConfig noisy = config(3, Generation::kMM2, {0, 1500, 0});
+  noisy.frame_error_probability = 1;
+  FakeMicroModem c(water_, noisy);
+  FakeModemHost host_c(c, scheduler_.clock());
+  c.power_on();
+  run(2s);
+  host_c.clear();
+  host_a_.send(to_sentence(micromodem::Cycle{0, 1, 3, 2, true, 2}, Talker::kHost));
+  answer_data_requests(host_a_, {"one", "two"}, true);
+  run(20s);
+  EXPECT_EQ(host_c.addresses(), (std::vector<std::string>{"CARXP", "CACYC", "CAMSG", "CAMSG", "CACST"}));
+  auto cst = micromodem::parse_receive_statistics(host_c.first("CACST")->sentence).value();
+  EXPECT_EQ(cst.mode, 1);
+  EXPECT_EQ(cst.bad_frames, 2);
+  EXPECT_EQ(cst.psk_error, 3);
+  EXPECT_EQ(host_a_.count("CAACK"), 0u) << "nothing good, nothing acknowledged";
+  EXPECT_EQ(host_b_.count("CARXD"), 2u) << "B overhears the packet meant for C";
+}
+
 class FakeMm1Test : public FakeMicroModemTest {
  protected:
   FakeMm1Test() : FakeMicroModemTest(Generation::kMM1) {}
@@ -315,6 +345,22 @@ TEST_F(FakeMm1Test, Mm1PrintsVersion6StatisticsAndOneRevisionLine) {
   host_a_.send(Sentence{"CC", "TMQ", {"0"}});
   run(1s);
   EXPECT_TRUE(host_a_.first("CAERR")) << "MM1 does not know $CCTMQ";
+}
+
+TEST_F(FakeMm1Test, TheThirdPartyAckBugReportsOtherModemsAcksAsOurs) {
+  FakeModemConfig buggy = config(3, Generation::kMM1, {0, 1500, 0});
+  buggy.third_party_ack_bug = true;
+  FakeMicroModem c(water_, buggy);
+  FakeModemHost host_c(c, scheduler_.clock());
+  c.power_on();
+  run(2s);
+  host_a_.send(to_sentence(micromodem::Cycle{0, 1, 2, 1, true, 1}, Talker::kHost));
+  answer_data_requests(host_a_, {"z"}, true);
+  run(20s);
+  ASSERT_EQ(host_a_.count("CAACK"), 1u);
+  ASSERT_EQ(host_c.count("CAACK"), 1u);
+  EXPECT_EQ(micromodem::parse_acknowledgement(host_c.first("CAACK")->sentence).value(),
+            (micromodem::Acknowledgement{2, 3, 1})) << "B's ACK to A, reported with DEST = C";
 }
 
 TEST(WaterDatagramTest, RoundTripsAndRefusesGarbage) {
