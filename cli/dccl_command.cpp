@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "dccl/codec.h"
+#include "dccl/plugin_codecs.h"
 #include "global_options.h"
 #include "dccl/hex.h"
-#include "register_codecs.h"
 
 namespace acomms::cli {
 namespace {
@@ -31,7 +31,7 @@ struct DcclOptions {
 };
 
 void load(dccl::Codec& codec, const DcclOptions& options) {
-  codecs::register_plugin_codecs(codec.registry());
+  dccl::install_plugin_codecs(codec.registry());
   for (const auto& file : options.proto_files) codec.load(file, options.include_dirs);
   if (options.use_crypto) codec.set_crypto(options.passphrase);
   codec.set_strict(options.strict);

@@ -2,29 +2,31 @@
 
 #include <cstdint>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "comma_list.h"
 #include "global_options.h"
-#include "mac/discovery_simulation.h"
-#include "queue/market_simulation.h"
+#include "eval/discovery_simulation.h"
+#include "eval/market_simulation.h"
+#include "mac/blank_slot.h"
 
 namespace acomms::cli {
 namespace {
 
 struct QueueMarketOptions {
-  queue::MarketConfig config;
-  std::vector<double> p_empty = queue::default_p_empty_grid();
+  eval::MarketConfig config;
+  std::vector<double> p_empty = eval::default_p_empty_grid();
 };
 
 void add_queue_market_command(CLI::App* sim) {
   static QueueMarketOptions options;
   CLI::App* market = sim->add_subcommand(
       "queue-market",
-      "The seed's queue marketplace experiment (thesis 2.3.4): mean total score of the dynamic "
-      "priority, a fixed priority on value_base, and lowest-ttl-first, as CSV "
+      "The queue marketplace experiment of Schneider (2013), section 2.3.4: mean total score of "
+      "the dynamic priority, a fixed priority on value_base, and lowest-ttl-first, as CSV "
       "p_empty,dynamic,fixed_value,lowest_ttl");
   market->add_option("--tau-s-ratio", options.config.tau_s_ratio,
                      "R: the variety time scale tau_s = R * tau (D_s = (t - t_last) / tau_s)")
@@ -48,8 +50,8 @@ void add_queue_market_command(CLI::App* sim) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   market->callback([] {
-    std::vector<queue::MarketPoint> points = queue::simulate_market(options.config, options.p_empty);
-    std::cout << queue::format_market_csv(points) << std::flush;
+    std::vector<eval::MarketPoint> points = eval::simulate_market(options.config, options.p_empty);
+    std::cout << eval::format_market_csv(points) << std::flush;
   });
 }
 
@@ -111,20 +113,18 @@ struct MacDiscoveryOptions {
   std::string sizes = "3-6";
   int trials = 200;
   double start_window_cycles = 4;
-  std::string blank_rule = "figure";
+  std::string blank_rule = mac::blank_rule_name(mac::kDefaultBlankRule);
 };
 
 mac::BlankRule blank_rule_of(const std::string& name) {
-  if (name == "figure") return mac::BlankRule::kFigure;
-  if (name == "congruence") return mac::BlankRule::kCongruence;
-  if (name == "anywhere") return mac::BlankRule::kAnywhere;
+  if (std::optional<mac::BlankRule> rule = mac::blank_rule_from_name(name)) return *rule;
   throw CLI::ValidationError("--blank-rule", "'" + name + "': use figure, congruence or anywhere");
 }
 
 void run_mac_discovery(const MacDiscoveryOptions& options) {
   if (!options.monte_carlo) {
     if (options.ids.empty()) throw CLI::ValidationError("--ids", "needed (or --monte-carlo)");
-    mac::DiscoveryScenario scenario;
+    eval::DiscoveryScenario scenario;
     scenario.ids = options.ids;
     scenario.start_s = options.start_s;
     scenario.slot_seconds = options.slot_seconds;
@@ -144,11 +144,11 @@ void run_mac_discovery(const MacDiscoveryOptions& options) {
       if (p.size() != 1) throw CLI::ValidationError("--p-collide", "one value for a single scenario");
       scenario.p_collide = p[0];
     }
-    mac::DiscoveryResult result = mac::simulate_discovery(scenario, true);
-    std::cout << mac::format_discovery(scenario, result) << std::flush;
+    eval::DiscoveryResult result = eval::simulate_discovery(scenario, true);
+    std::cout << eval::format_discovery(scenario, result) << std::flush;
     return;
   }
-  mac::DiscoveryMonteCarloConfig config;
+  eval::DiscoveryMonteCarloConfig config;
   config.sizes.clear();
   for (int64_t n : parse_int_list(options.sizes, "--sizes", false)) {
     if (n < 1 || n > 127) throw CLI::ValidationError("--sizes", "a network has 1 to 127 nodes");
@@ -171,7 +171,7 @@ void run_mac_discovery(const MacDiscoveryOptions& options) {
   config.start_window_cycles = options.start_window_cycles;
   config.horizon_cycles = options.horizon_cycles;
   config.seed = options.seed;
-  std::cout << mac::format_discovery_csv(mac::simulate_discovery_monte_carlo(config)) << std::flush;
+  std::cout << eval::format_discovery_csv(eval::simulate_discovery_monte_carlo(config)) << std::flush;
 }
 
 void add_mac_discovery_command(CLI::App* sim) {
@@ -207,10 +207,11 @@ void add_mac_discovery_command(CLI::App* sim) {
       ->check(CLI::Range(1.0, 1e6))
       ->capture_default_str();
   command->add_option("--blank-rule", options.blank_rule,
-                      "Blank placement (daemon/mac/blank_slot.h): figure (last slot, penultimate "
-                      "when H(k, S) mod C == 0), congruence (the same, excited when k mod C == "
-                      "S mod C, as goby-acomms) or anywhere (excited: a pseudo-random slot "
-                      "before the last)")
+                      "Blank placement (daemon/mac/blank_slot.h): anywhere (excited: a "
+                      "pseudo-random slot before the last; the daemon's default too), figure "
+                      "(last slot, penultimate when H(k, S) mod C == 0, Schneider (2013) Table "
+                      "2.7) or congruence (the same, excited when k mod C == S mod C, as "
+                      "goby-acomms)")
       ->check(CLI::IsMember({"figure", "congruence", "anywhere"}))
       ->capture_default_str();
   command->add_option("--seed", options.seed, "Random seed (same seed, same output)")

@@ -1,9 +1,10 @@
 #pragma once
 // `acommsctl sim ...`: offline simulations, no daemon needed.
-//   sim queue-market   the seed's marketplace evaluation of the dynamic
-//                      priority (see daemon/queue/market_simulation.h)
+//   sim queue-market   the marketplace evaluation of the dynamic priority
+//                      in Schneider (2013), section 2.3.4 (see
+//                      daemon/eval/market_simulation.h)
 //   sim mac-discovery  the auto-discovery TDMA MAC on a simulated channel
-//                      (see daemon/mac/discovery_simulation.h)
+//                      (see daemon/eval/discovery_simulation.h)
 // Further simulations are added as subcommands of `sim` in add_sim_command.
 
 #include <CLI/CLI.hpp>

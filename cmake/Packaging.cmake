@@ -11,7 +11,7 @@
 # and the maintainer scripts in packaging/debian/.
 #
 # The binaries find the .proto files at run time relative to themselves
-# (<prefix>/bin/.. /share/acommsd/proto, see daemon/dccl/codec.cpp), so the
+# (<prefix>/bin/.. /share/acommsd/proto, see daemon/dccl/schema_loader.cpp), so the
 # package needs no build of its own: ACOMMS_PROTO_DIR keeps pointing at the
 # source tree, where the tests want it, and matters only for binaries run
 # from the build tree.

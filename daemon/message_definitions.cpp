@@ -7,8 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "arithmetic/arithmetic_model.h"
-#include "register_codecs.h"
+#include "dccl/plugin_codecs.h"
 
 namespace acomms {
 namespace {
@@ -28,15 +27,14 @@ std::string read_passphrase_file(const std::string& path) {
 }  // namespace
 
 std::unique_ptr<dccl::Codec> make_codec(const v1::DcclConfig& config) {
-  for (const auto& model : config.arithmetic_models()) {
-    try {
-      codecs::ArithmeticModels::global().add(codecs::ArithmeticModel::from_message(model));
-    } catch (const dccl::Error& e) {
-      throw std::runtime_error(std::string("dccl.arithmetic_models: ") + e.what());
-    }
-  }
   auto codec = std::make_unique<dccl::Codec>();
-  codecs::register_plugin_codecs(codec->registry());
+  // Each plugin codec takes its settings from its own field of the dccl
+  // section (the arithmetic codec: arithmetic_models), for this codec only.
+  try {
+    dccl::install_plugin_codecs(codec->registry(), &config);
+  } catch (const dccl::Error& e) {
+    throw std::runtime_error(std::string("dccl.") + e.what());
+  }
   std::vector<std::string> include_dirs(config.include_dirs().begin(), config.include_dirs().end());
   for (const std::string& file : config.proto_files()) {
     try {

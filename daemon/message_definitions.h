@@ -1,6 +1,7 @@
 #pragma once
 // The daemon's DCCL codec, set up from the config's dccl section: plugin
-// codecs registered, definitions loaded, encryption and strict mode applied.
+// codecs installed (each configured from its own field of the section),
+// definitions loaded, encryption and strict mode applied.
 
 #include <memory>
 

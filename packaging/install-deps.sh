@@ -20,6 +20,8 @@ if [[ "${1:-}" == "--test" ]]; then
   packages+=(python3-grpcio python3-protobuf)
   # the package test: dpkg-shlibdeps for cpack, systemd-analyze to verify the unit
   packages+=(dpkg-dev systemd)
+  # the TLS tests make their CAs and certificates with the openssl command
+  packages+=(openssl)
 fi
 
 missing=()

@@ -11,6 +11,8 @@
 //
 // Loading compiles each type into a plan (every field's codec, bit width and
 // bounds resolved), so encode/decode do no option or descriptor look-ups.
+// How a file loads: schema_loader.h. How a message becomes bytes (id, head,
+// body, padding, encryption): wire_format.h.
 // All failures throw acomms::dccl::Error (see error.h).
 //
 // Messages are google::protobuf::DynamicMessage objects owned by the caller
@@ -40,6 +42,9 @@ class Message;
 }  // namespace google::protobuf
 
 namespace acomms::dccl {
+
+class SchemaLoader;
+class WireFormat;
 
 class Codec {
  public:
@@ -107,12 +112,10 @@ class Codec {
   void set_clock(std::function<double()> clock);
 
  private:
-  struct Impl;
-  struct Plan;
-  const Plan& plan_for(const google::protobuf::Message& msg, std::unique_ptr<google::protobuf::Message>* copy) const;
-  std::unique_ptr<google::protobuf::Message> decode_one(const Plan& plan, std::string_view bytes,
-                                                        size_t* consumed) const;
-  std::unique_ptr<Impl> impl_;
+  // Loading (schema_loader.h) and the bytes (wire_format.h) are separate
+  // ideas; this class only joins them.
+  std::unique_ptr<SchemaLoader> schema_;
+  std::unique_ptr<WireFormat> wire_;
 };
 
 }  // namespace acomms::dccl

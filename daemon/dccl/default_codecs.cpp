@@ -5,26 +5,21 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "dccl/element_codec.h"
 #include "dccl/message_codec.h"
 #include "dccl/numeric.h"
 #include "dccl/reflection_access.h"
+#include "util/saturating.h"
 
 namespace acomms::dccl {
 namespace gp = google::protobuf;
 
 namespace {
 
-uint64_t sat_add(uint64_t a, uint64_t b) {
-  return a > std::numeric_limits<uint64_t>::max() - b ? std::numeric_limits<uint64_t>::max() : a + b;
-}
-uint64_t sat_mul(uint64_t a, uint64_t b) {
-  if (a != 0 && b > std::numeric_limits<uint64_t>::max() / a) return std::numeric_limits<uint64_t>::max();
-  return a * b;
-}
+using util::saturating_add;
+using util::saturating_mul;
 
 NumericBounds numeric_bounds(const FieldContext& ctx) {
   const FieldOptions& o = ctx.options;
@@ -260,7 +255,7 @@ class MessageElement final : public ElementCodec {
 
   SizeBits size() const override {
     SizeBits b = body_->size();
-    return presence_ ? SizeBits{1, sat_add(b.max, 1)} : b;
+    return presence_ ? SizeBits{1, saturating_add(b.max, 1)} : b;
   }
   void encode(const gp::Message& msg, int index, BitWriter& out, const EncodeContext& ctx) const override {
     const gp::Reflection* r = msg.GetReflection();
@@ -351,7 +346,7 @@ class RepeatedField final : public FieldCodec {
   }
 
   SizeBits size() const override {
-    return {sat_add(prefix_bits_, sat_mul(min_, elem_.min)), sat_add(prefix_bits_, sat_mul(max_, elem_.max))};
+    return {saturating_add(prefix_bits_, saturating_mul(min_, elem_.min)), saturating_add(prefix_bits_, saturating_mul(max_, elem_.max))};
   }
   double resolution() const override { return element_->resolution(); }
 
@@ -369,7 +364,7 @@ class RepeatedField final : public FieldCodec {
 
   void decode(BitReader& in, gp::Message* msg, const DecodeContext& ctx) const override {
     uint64_t count = in.read(prefix_bits_) + min_;
-    in.require(sat_mul(count, elem_.min));  // never loop over more elements than bytes
+    in.require(saturating_mul(count, elem_.min));  // never loop over more elements than bytes
     for (uint64_t i = 0; i < count; ++i) element_->decode(in, msg, ctx);
   }
 
@@ -394,7 +389,7 @@ class FixedRepeatedField final : public FieldCodec {
     if (elem_.max == 0) ctx.fail("repeated field of zero-size elements is not supported");
   }
 
-  SizeBits size() const override { return {sat_mul(max_, elem_.min), sat_mul(max_, elem_.max)}; }
+  SizeBits size() const override { return {saturating_mul(max_, elem_.min), saturating_mul(max_, elem_.max)}; }
   double resolution() const override { return element_->resolution(); }
 
   void encode(const gp::Message& msg, BitWriter& out, const EncodeContext& ctx) const override {
@@ -409,7 +404,7 @@ class FixedRepeatedField final : public FieldCodec {
     }
   }
   void decode(BitReader& in, gp::Message* msg, const DecodeContext& ctx) const override {
-    in.require(sat_mul(max_, elem_.min));
+    in.require(saturating_mul(max_, elem_.min));
     for (uint32_t i = 0; i < max_; ++i) element_->decode(in, msg, ctx);
   }
 
@@ -427,7 +422,7 @@ class PresenceField final : public FieldCodec {
   PresenceField(const FieldContext& ctx, std::unique_ptr<ElementCodec> element)
       : field_(ctx.field), element_(std::move(element)) {}
 
-  SizeBits size() const override { return {1, sat_add(element_->size().max, 1)}; }
+  SizeBits size() const override { return {1, saturating_add(element_->size().max, 1)}; }
   double resolution() const override { return element_->resolution(); }
   void encode(const gp::Message& msg, BitWriter& out, const EncodeContext& ctx) const override {
     if (msg.GetReflection()->HasField(msg, field_)) {

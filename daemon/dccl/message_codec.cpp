@@ -4,19 +4,17 @@
 #include <google/protobuf/message.h>
 
 #include <algorithm>
-#include <limits>
 
 #include "dccl/numeric.h"
 #include "dccl/registry.h"
+#include "util/saturating.h"
 
 namespace acomms::dccl {
 namespace gp = google::protobuf;
 
 namespace {
 
-uint64_t sat_add(uint64_t a, uint64_t b) {
-  return a > std::numeric_limits<uint64_t>::max() - b ? std::numeric_limits<uint64_t>::max() : a + b;
-}
+using util::saturating_add;
 
 [[noreturn]] void throw_truncated(const std::string& path, const TruncatedRead& t) {
   throw decode_error(path + ": message truncated at bit " + std::to_string(t.position) + " (needs " +
@@ -74,8 +72,8 @@ SizeBits MessageBody::size() const {
   SizeBits total;
   std::vector<uint64_t> oneof_max(oneofs_.size(), 0);
   for (size_t i = 0; i < oneofs_.size(); ++i) {
-    total.min = sat_add(total.min, oneofs_[i].bits);
-    total.max = sat_add(total.max, oneofs_[i].bits);
+    total.min = saturating_add(total.min, oneofs_[i].bits);
+    total.max = saturating_add(total.max, oneofs_[i].bits);
   }
   for (const Slot& slot : slots_) {
     SizeBits s = slot.codec->size();
@@ -83,10 +81,10 @@ SizeBits MessageBody::size() const {
       oneof_max[slot.oneof] = std::max(oneof_max[slot.oneof], s.max);
       continue;
     }
-    total.min = sat_add(total.min, s.min);
-    total.max = sat_add(total.max, s.max);
+    total.min = saturating_add(total.min, s.min);
+    total.max = saturating_add(total.max, s.max);
   }
-  for (uint64_t m : oneof_max) total.max = sat_add(total.max, m);
+  for (uint64_t m : oneof_max) total.max = saturating_add(total.max, m);
   return total;
 }
 

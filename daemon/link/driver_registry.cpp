@@ -3,6 +3,21 @@
 #include <stdexcept>
 
 namespace acomms::link {
+namespace {
+
+// A function-local static, so it exists whichever plugin registers first.
+DriverRegistry& linked_drivers() {
+  static DriverRegistry registry;
+  return registry;
+}
+
+}  // namespace
+
+const DriverRegistry& DriverRegistry::linked() { return linked_drivers(); }
+
+DriverRegistrar::DriverRegistrar(const std::string& name, DriverFactory factory) {
+  linked_drivers().add(name, std::move(factory));
+}
 
 void DriverRegistry::add(const std::string& name, DriverFactory factory) {
   factories_[name] = std::move(factory);

@@ -1,6 +1,14 @@
 #pragma once
-// Drivers by name. Each driver plugin (plugins/drivers/<name>) registers a
-// factory; the config's driver.name picks one.
+// Drivers by name. Each driver plugin (plugins/drivers/<name>) adds its
+// factory to the drivers linked into the program with a static
+// DriverRegistrar in its own .cpp (the plugins' library is linked whole, so
+// the linker keeps that object); the daemon takes DriverRegistry::linked()
+// and the config's driver.name picks one. Nothing lists the drivers: a new
+// driver is a new folder under plugins/drivers.
+//
+// linked() is filled during static initialisation only and read only
+// afterwards; a DriverRegistry copied from it (a test's, acommsctl's
+// simulator) may replace drivers without touching it.
 
 #include <asio/io_context.hpp>
 
@@ -30,6 +38,9 @@ using DriverFactory = std::function<std::unique_ptr<Driver>(const DriverContext&
 
 class DriverRegistry {
  public:
+  // The drivers linked into this program, each added by its DriverRegistrar.
+  static const DriverRegistry& linked();
+
   // Registers (or replaces) a driver.
   void add(const std::string& name, DriverFactory factory);
   // Builds the driver `name`. Throws std::invalid_argument naming the known
@@ -40,6 +51,13 @@ class DriverRegistry {
 
  private:
   std::map<std::string, DriverFactory> factories_;
+};
+
+// Adds driver `name` to DriverRegistry::linked(). Define one as a static
+// object in the driver plugin's .cpp.
+class DriverRegistrar {
+ public:
+  DriverRegistrar(const std::string& name, DriverFactory factory);
 };
 
 }  // namespace acomms::link

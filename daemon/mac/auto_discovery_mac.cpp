@@ -23,8 +23,8 @@ const AutoDiscoveryConfig& checked(const AutoDiscoveryConfig& config, int32_t ow
         std::to_string(config.slot_seconds));
   if (config.coolness < 1)
     throw std::invalid_argument(
-        "mac.coolness must be >= 1 for auto_discovery (the seed recommends the expected "
-        "network size + 1)");
+        "mac.coolness must be >= 1 for auto_discovery (Schneider (2013), section 2.4.3, "
+        "recommends the expected network size + 1)");
   if (config.expire_cycles < 1)
     throw std::invalid_argument("mac.expire_cycles must be >= 1 for auto_discovery");
   return config;

@@ -1,5 +1,5 @@
 #pragma once
-// Decentralized TDMA with passive auto-discovery (the seed's section 2.4.3;
+// Decentralized TDMA with passive auto-discovery (Schneider (2013), section 2.4.3;
 // goby-acomms had a similar mode). No master, no configured cycle and no
 // control messages: each node builds its cycle from the nodes it has heard.
 //
@@ -17,13 +17,14 @@
 //   the silent remainder and realignment at midnight described there. Since
 //   every cycle length is a whole number of slots from the same reference,
 //   all nodes' slot boundaries coincide, whatever their views.
-// * Blank position: blank_slot_index (blank_slot.h). By default (kFigure)
-//   the last slot, or the penultimate one in "excited" cycles, as the seed's
-//   Figure 2.10 and Table 2.7 have it (its equations 2.6-2.7 disagree and
-//   are not followed); cycle k is excited when H(k, S) mod C == 0 (S: the
-//   sum of the known ids, C: the coolness, H: a fixed 64-bit mix).
-//   blank_slot.h also has goby-acomms' test (kCongruence) and kAnywhere,
-//   and why kFigure cannot make every network of 3+ nodes converge.
+// * Blank position: blank_slot_index (blank_slot.h). The last slot, except
+//   in "excited" cycles, where H(k, S) mod C == 0 (S: the sum of the known
+//   ids, C: the coolness, H: a fixed 64-bit mix). By default (kAnywhere) an
+//   excited blank takes a pseudo-random slot before the last; kFigure puts
+//   it in the penultimate one, as Schneider (2013), Figure 2.10 and Table
+//   2.7, has it (its equations 2.6-2.7 disagree and are not followed), and
+//   kCongruence is goby-acomms' test. blank_slot.h says why kFigure cannot
+//   make every network of 3+ nodes converge.
 // * Discovery: a new id joins the known world when heard. The cycle in
 //   progress is finished unchanged (it is still what the nodes sharing the
 //   old view expect, so it stays collision-free); then, the cycle having
@@ -53,9 +54,9 @@ namespace acomms::mac {
 struct AutoDiscoveryConfig {
   double slot_seconds = 10;
   int32_t rate = 0;
-  uint32_t coolness = 3;       // C >= 1; the seed recommends network size + 1
+  uint32_t coolness = 3;       // C >= 1; Schneider (2013) recommends network size + 1
   uint32_t expire_cycles = 5;  // >= 1
-  BlankRule blank_rule = BlankRule::kFigure;
+  BlankRule blank_rule = kDefaultBlankRule;
   std::optional<double> epoch;  // unset: midnight UTC
 };
 
@@ -79,6 +80,7 @@ class AutoDiscoveryMac final : public Mac {
   void on_receive(const v1::ModemTransmission& transmission) override;
 
   int32_t own_id() const { return own_id_; }
+  BlankRule blank_rule() const { return config_.blank_rule; }
   // The known world, this node included, ascending.
   std::vector<int32_t> known_ids() const;
   Activity activity() const;

@@ -10,6 +10,22 @@ int64_t positive_mod(int64_t a, int64_t m) {
 
 }  // namespace
 
+const char* blank_rule_name(BlankRule rule) {
+  switch (rule) {
+    case BlankRule::kFigure: return "figure";
+    case BlankRule::kCongruence: return "congruence";
+    case BlankRule::kAnywhere: return "anywhere";
+  }
+  return "?";
+}
+
+std::optional<BlankRule> blank_rule_from_name(std::string_view name) {
+  for (BlankRule rule : {BlankRule::kFigure, BlankRule::kCongruence, BlankRule::kAnywhere}) {
+    if (name == blank_rule_name(rule)) return rule;
+  }
+  return std::nullopt;
+}
+
 uint64_t blank_hash(int64_t cycle_count, int64_t id_sum) {
   uint64_t x = static_cast<uint64_t>(cycle_count) * 0x9e3779b97f4a7c15ULL +
                static_cast<uint64_t>(id_sum);

@@ -1,6 +1,7 @@
 #include "mac/mac_factory.h"
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "mac/auto_discovery_mac.h"
@@ -77,16 +78,15 @@ std::unique_ptr<Mac> make_mac(const v1::MacConfig& config, int32_t own_id,
     auto_config.expire_cycles = config.expire_cycles();
     auto_config.epoch = epoch_of(config);
     const std::string& rule = config.blank_rule();
-    if (rule.empty() || rule == "figure") {
-      auto_config.blank_rule = BlankRule::kFigure;
-    } else if (rule == "congruence") {
-      auto_config.blank_rule = BlankRule::kCongruence;
-    } else if (rule == "anywhere") {
-      auto_config.blank_rule = BlankRule::kAnywhere;
+    std::optional<BlankRule> named = blank_rule_from_name(rule);
+    if (rule.empty()) {
+      auto_config.blank_rule = kDefaultBlankRule;
+    } else if (named) {
+      auto_config.blank_rule = *named;
     } else {
       throw std::invalid_argument("mac.blank_rule \"" + rule +
-                                  "\" is unknown; known: \"figure\" (default), \"congruence\", "
-                                  "\"anywhere\"");
+                                  "\" is unknown; known: \"anywhere\" (default), \"figure\", "
+                                  "\"congruence\"");
     }
     return std::make_unique<AutoDiscoveryMac>(auto_config, own_id, scheduler);
   }

@@ -1,5 +1,5 @@
 #pragma once
-// The dynamic priority of a queue (the seed's section 2.3):
+// The dynamic priority of a queue (Schneider (2013), section 2.3):
 //
 //   P(t) = value_base * (t - t_last_sent) / ttl
 //

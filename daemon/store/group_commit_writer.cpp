@@ -113,132 +113,168 @@ void GroupCommitWriter::run() {
   statements_.clear();
 }
 
-void GroupCommitWriter::run_batch(std::vector<Request>& batch) {
+// The state of one batch while its requests run. Normally one transaction
+// holds them all; when SQLite rolls a transaction back by itself, the
+// requests after the one that caused it go on in a fresh transaction.
+struct GroupCommitWriter::Batch {
   using Clock = std::chrono::steady_clock;
-  const Clock::time_point batch_start = Clock::now();
-  const size_t n = batch.size();
-  std::vector<std::exception_ptr> errors(n);
+
+  explicit Batch(std::vector<Request>& requests) : requests(requests), errors(requests.size()) {}
+  size_t size() const { return requests.size(); }
+
+  std::vector<Request>& requests;
+  // Why each request failed; null for those that are committed.
+  std::vector<std::exception_ptr> errors;
+  const Clock::time_point start = Clock::now();
   // The first request of the open transaction: a transaction SQLite rolls
   // back by itself takes every request since then with it.
   size_t first_in_transaction = 0;
-  uint64_t commits = 0;
-
-  auto lose_transaction = [&](size_t end, const std::string& reason) {
-    auto error = std::make_exception_ptr(StoreError(
-        "store " + db_.path() + ": " + reason + "; the write was not stored"));
-    for (size_t j = first_in_transaction; j < end; ++j) {
-      if (!errors[j]) errors[j] = error;
-    }
-  };
-  auto begin = [&](size_t i) {
-    first_in_transaction = i;
-    try {
-      db_.exec("BEGIN IMMEDIATE");
-      return true;
-    } catch (const StoreError& e) {
-      spdlog::error("store {}: cannot start a transaction for {} write(s): {}", db_.path(), n - i,
-                    e.what());
-      if (!sqlite3_get_autocommit(db_.handle())) {
-        sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
-      }
-      lose_transaction(n, std::string("cannot start a transaction: ") + e.what());
-      return false;
-    }
-  };
-
-  bool open = begin(0);
+  // A transaction is open and requests may run in it.
+  bool open = false;
+  bool committed = false;
+  Clock::duration commit_time{};
   // One name serves every request: savepoints nest, but these never do.
   Statement* savepoint = nullptr;
   Statement* release = nullptr;
   Statement* rollback_to = nullptr;
-  if (open) {
-    try {
-      savepoint = &prepared("SAVEPOINT request");
-      release = &prepared("RELEASE request");
-      rollback_to = &prepared("ROLLBACK TO request");
-    } catch (const StoreError& e) {
-      sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
-      lose_transaction(n, std::string("cannot prepare savepoints: ") + e.what());
-      open = false;
-    }
-  }
-  for (size_t i = 0; open && i < n; ++i) {
-    try {
-      savepoint->reset();
-      savepoint->step();
-      try {
-        batch[i].work(db_);
-      } catch (...) {
-        errors[i] = std::current_exception();
-        // Most failures (a constraint, a bad argument) leave the transaction
-        // open and only this request's savepoint needs undoing. Some (I/O
-        // error, disk full) make SQLite roll back the whole transaction.
-        if (sqlite3_get_autocommit(db_.handle())) {
-          lose_transaction(i, "the transaction was rolled back by a failure of a write in the "
-                              "same batch (" + what(errors[i]) + ")");
-          open = begin(i + 1);
-          continue;
-        }
-        rollback_to->reset();
-        rollback_to->step();
-      }
-      release->reset();
-      release->step();
-    } catch (const StoreError& e) {
-      // The savepoint machinery itself failed: nothing of this transaction
-      // can be trusted any more.
-      if (!errors[i]) errors[i] = std::current_exception();
-      spdlog::error("store {}: savepoint failed: {}", db_.path(), e.what());
-      sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
-      lose_transaction(i, std::string("savepoint failed: ") + e.what());
-      open = begin(i + 1);
-    }
-  }
-  Clock::duration commit_time{};
-  if (open) {
-    const Clock::time_point commit_start = Clock::now();
-    try {
-      db_.exec("COMMIT");
-      commit_time = Clock::now() - commit_start;
-      ++commits;
-    } catch (const StoreError& e) {
-      spdlog::error("store {}: commit of {} write(s) failed: {}", db_.path(),
-                    n - first_in_transaction, e.what());
-      // A failed COMMIT may leave the transaction open (SQLITE_BUSY); end it
-      // so that the next batch starts clean.
-      if (!sqlite3_get_autocommit(db_.handle())) {
-        sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
-      }
-      lose_transaction(n, std::string("commit failed: ") + e.what());
-    }
-  }
+};
 
-  uint64_t failed = 0;
-  for (size_t i = 0; i < n; ++i) failed += errors[i] ? 1 : 0;
-  // Counted before anyone is answered: a caller whose write returned must
-  // find it in stats().
-  {
-    std::lock_guard lock(mutex_);
-    stats_.batches += commits;
-    stats_.committed += n - failed;
-    stats_.failed += failed;
-    stats_.max_batch = std::max<uint64_t>(stats_.max_batch, n);
-    stats_.commit_seconds += std::chrono::duration<double>(commit_time).count();
-    stats_.busy_seconds += std::chrono::duration<double>(Clock::now() - batch_start).count();
+void GroupCommitWriter::run_batch(std::vector<Request>& requests) {
+  Batch batch(requests);
+  batch.open = begin(batch, 0) && prepare_savepoints(batch);
+  for (size_t i = 0; batch.open && i < batch.size(); ++i) run_request(batch, i);
+  if (batch.open) commit(batch);
+  record_stats(batch);
+  answer(batch);
+}
+
+// Fails every request of the open transaction before `end` that has not
+// failed for a reason of its own: their changes are gone with it.
+void GroupCommitWriter::lose_transaction(Batch& batch, size_t end, const std::string& reason) {
+  auto error = std::make_exception_ptr(StoreError(
+      "store " + db_.path() + ": " + reason + "; the write was not stored"));
+  for (size_t j = batch.first_in_transaction; j < end; ++j) {
+    if (!batch.errors[j]) batch.errors[j] = error;
   }
-  for (size_t i = 0; i < n; ++i) {
-    if (batch[i].done) {
+}
+
+// Opens the transaction for the requests from `first` on. When it cannot be
+// opened, all of them fail and it returns false.
+bool GroupCommitWriter::begin(Batch& batch, size_t first) {
+  batch.first_in_transaction = first;
+  try {
+    db_.exec("BEGIN IMMEDIATE");
+    return true;
+  } catch (const StoreError& e) {
+    spdlog::error("store {}: cannot start a transaction for {} write(s): {}", db_.path(), batch.size() - first,
+                  e.what());
+    if (!sqlite3_get_autocommit(db_.handle())) {
+      sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
+    }
+    lose_transaction(batch, batch.size(), std::string("cannot start a transaction: ") + e.what());
+    return false;
+  }
+}
+
+// The statements that give each request its savepoint. Without them no
+// request can run alone, so the whole batch fails.
+bool GroupCommitWriter::prepare_savepoints(Batch& batch) {
+  try {
+    batch.savepoint = &prepared("SAVEPOINT request");
+    batch.release = &prepared("RELEASE request");
+    batch.rollback_to = &prepared("ROLLBACK TO request");
+    return true;
+  } catch (const StoreError& e) {
+    sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
+    lose_transaction(batch, batch.size(), std::string("cannot prepare savepoints: ") + e.what());
+    return false;
+  }
+}
+
+// Runs request i inside its own savepoint, so that its failure undoes only
+// its own changes. Leaves batch.open false only if no transaction could be
+// opened again after losing one.
+void GroupCommitWriter::run_request(Batch& batch, size_t i) {
+  try {
+    batch.savepoint->reset();
+    batch.savepoint->step();
+    try {
+      batch.requests[i].work(db_);
+    } catch (...) {
+      batch.errors[i] = std::current_exception();
+      // Most failures (a constraint, a bad argument) leave the transaction
+      // open and only this request's savepoint needs undoing. Some (I/O
+      // error, disk full) make SQLite roll back the whole transaction.
+      if (sqlite3_get_autocommit(db_.handle())) {
+        lose_transaction(batch, i, "the transaction was rolled back by a failure of a write in the "
+                                   "same batch (" + what(batch.errors[i]) + ")");
+        batch.open = begin(batch, i + 1);
+        return;
+      }
+      batch.rollback_to->reset();
+      batch.rollback_to->step();
+    }
+    batch.release->reset();
+    batch.release->step();
+  } catch (const StoreError& e) {
+    // The savepoint machinery itself failed: nothing of this transaction
+    // can be trusted any more.
+    if (!batch.errors[i]) batch.errors[i] = std::current_exception();
+    spdlog::error("store {}: savepoint failed: {}", db_.path(), e.what());
+    sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
+    lose_transaction(batch, i, std::string("savepoint failed: ") + e.what());
+    batch.open = begin(batch, i + 1);
+  }
+}
+
+void GroupCommitWriter::commit(Batch& batch) {
+  const Batch::Clock::time_point commit_start = Batch::Clock::now();
+  try {
+    db_.exec("COMMIT");
+    batch.commit_time = Batch::Clock::now() - commit_start;
+    batch.committed = true;
+  } catch (const StoreError& e) {
+    spdlog::error("store {}: commit of {} write(s) failed: {}", db_.path(),
+                  batch.size() - batch.first_in_transaction, e.what());
+    // A failed COMMIT may leave the transaction open (SQLITE_BUSY); end it
+    // so that the next batch starts clean.
+    if (!sqlite3_get_autocommit(db_.handle())) {
+      sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
+    }
+    lose_transaction(batch, batch.size(), std::string("commit failed: ") + e.what());
+  }
+}
+
+// Counted before anyone is answered: a caller whose write returned must
+// find it in stats().
+void GroupCommitWriter::record_stats(const Batch& batch) {
+  const size_t n = batch.size();
+  const auto failed = static_cast<uint64_t>(
+      std::count_if(batch.errors.begin(), batch.errors.end(), [](const std::exception_ptr& e) { return e != nullptr; }));
+  std::lock_guard lock(mutex_);
+  stats_.batches += batch.committed ? 1 : 0;
+  stats_.committed += n - failed;
+  stats_.failed += failed;
+  stats_.max_batch = std::max<uint64_t>(stats_.max_batch, n);
+  stats_.commit_seconds += std::chrono::duration<double>(batch.commit_time).count();
+  stats_.busy_seconds += std::chrono::duration<double>(Batch::Clock::now() - batch.start).count();
+}
+
+// Tells each request its fate, in the order they were queued.
+void GroupCommitWriter::answer(const Batch& batch) {
+  for (size_t i = 0; i < batch.size(); ++i) {
+    const Request& request = batch.requests[i];
+    if (request.done) {
       // A throwing done must not take the writer (and every later write)
       // down with it.
       try {
-        batch[i].done(errors[i]);
+        request.done(batch.errors[i]);
       } catch (const std::exception& e) {
         spdlog::error("store {}: a write's completion failed: {}", db_.path(), e.what());
       }
-    } else if (errors[i]) {
+    } else if (batch.errors[i]) {
       // A post() has no caller to tell: the log is where it must show.
-      spdlog::error("store {}: an asynchronous write was not stored: {}", db_.path(),
-                    what(errors[i]));
+      spdlog::error("store {}: an asynchronous write was not stored: {}", db_.path(), what(batch.errors[i]));
     }
   }
 }

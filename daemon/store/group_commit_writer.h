@@ -119,10 +119,19 @@ class GroupCommitWriter {
     Done done;
   };
 
+  // One batch on its way through its transaction(s) (see the .cpp).
+  struct Batch;
+
   void enqueue(Request request);
   void run();
-  void run_batch(std::vector<Request>& batch);
-  void fail(std::vector<Request>& batch, size_t begin, size_t end, std::exception_ptr error);
+  void run_batch(std::vector<Request>& requests);
+  bool begin(Batch& batch, size_t first);
+  bool prepare_savepoints(Batch& batch);
+  void run_request(Batch& batch, size_t i);
+  void commit(Batch& batch);
+  void lose_transaction(Batch& batch, size_t end, const std::string& reason);
+  void record_stats(const Batch& batch);
+  void answer(const Batch& batch);
 
   Database& db_;
   const Options options_;

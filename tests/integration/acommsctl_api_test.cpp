@@ -12,8 +12,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
-#include <thread>
 
 #include "acomms/v1/acomms.pb.h"
 #include "child_process.h"
@@ -515,15 +515,15 @@ TEST_F(AcommsctlApi, EventsTimesAreCheckedBeforeAsking) {
 }
 
 TEST_F(AcommsctlApi, SubscriberEndsWithZeroOnSigintAndOneWhenTheDaemonStops) {
+  std::set<uint64_t> before = unix_connections(socket_);
   ChildProcess interrupted(kAcommsctl, {"--socket", socket_, "sub"}, (dir_ / "sub1").string());
-  std::this_thread::sleep_for(1s);
-  ASSERT_TRUE(interrupted.running()) << interrupted.stderr_text();
+  ASSERT_TRUE(wait_connected(interrupted, socket_, before)) << interrupted.stderr_text();
   interrupted.signal(SIGINT);
   EXPECT_EQ(interrupted.wait(10s), 0) << interrupted.stderr_text();
 
+  before = unix_connections(socket_);
   ChildProcess orphaned(kAcommsctl, {"--socket", socket_, "sub", "ctltest.Beacon"}, (dir_ / "sub2").string());
-  std::this_thread::sleep_for(1s);
-  ASSERT_TRUE(orphaned.running()) << orphaned.stderr_text();
+  ASSERT_TRUE(wait_connected(orphaned, socket_, before)) << orphaned.stderr_text();
   daemon_->signal(SIGTERM);
   EXPECT_EQ(daemon_->wait(15s), 0);
   EXPECT_EQ(orphaned.wait(10s), 1);
@@ -576,18 +576,16 @@ TEST(AcommsctlSubscribe, PrintsOneJsonLinePerReceivedMessage) {
   ASSERT_TRUE(wait_serving(node1, socket1)) << node1.stderr_text();
   ASSERT_TRUE(wait_serving(node2, socket2)) << node2.stderr_text();
 
+  const std::set<uint64_t> before = unix_connections(socket2);
   ChildProcess sub(kAcommsctl, {"--socket", socket2, "sub", "ctltest.VehicleStatus", "--src", "1"},
                    (dir / "sub").string());
-  std::this_thread::sleep_for(1s);
+  ASSERT_TRUE(wait_connected(sub, socket2, before)) << sub.stderr_text();
   RunResult sent = run(kAcommsctl,
                        {"--socket", socket1, "send", "ctltest.VehicleStatus", "header.src=1", "depth=42.5", "mode=IDLE"},
                        (dir / "send").string());
   ASSERT_EQ(sent.exit_code, 0) << sent.err;
 
-  auto deadline = std::chrono::steady_clock::now() + 30s;
-  while (sub.stdout_text().find('\n') == std::string::npos && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(200ms);
-  }
+  wait_until([&] { return sub.stdout_text().find('\n') != std::string::npos; }, 30s, 200ms);
   const std::string out = sub.stdout_text();
   ASSERT_NE(out.find('\n'), std::string::npos) << "nothing received; sub: " << sub.stderr_text();
   Struct line = parse_json<Struct>(out.substr(0, out.find('\n')));

@@ -6,7 +6,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <vector>
 
 #include "child_process.h"
@@ -35,13 +34,6 @@ class AcommsctlDccl : public ::testing::Test {
   fs::path dir_;
 };
 
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) out.push_back(line);
-  return out;
-}
-
 TEST_F(AcommsctlDccl, EncodesEveryConformanceVector) {
   std::ifstream file(kVectors);
   std::string input, expected;
@@ -63,7 +55,7 @@ TEST_F(AcommsctlDccl, EncodeReportsBadLinesAndFailsAtTheEnd) {
                           "|gv.Num4| ri: banana\n"
                           "|gv.Id127|\n");
   EXPECT_EQ(result.exit_code, 1);
-  std::vector<std::string> out = lines(result.out);
+  std::vector<std::string> out = acomms::testing::lines_of(result.out);
   ASSERT_EQ(out.size(), 5u) << result.out;
   EXPECT_EQ(out[0], "02");
   EXPECT_EQ(out[1].rfind("error: line 2: ", 0), 0u) << out[1];
@@ -89,7 +81,7 @@ TEST_F(AcommsctlDccl, DecodesConcatenatedMessagesAndReportsGarbage) {
                           "zz\n"
                           "14\n");
   EXPECT_EQ(result.exit_code, 1);
-  std::vector<std::string> out = lines(result.out);
+  std::vector<std::string> out = acomms::testing::lines_of(result.out);
   ASSERT_EQ(out.size(), 5u) << result.out;
   EXPECT_EQ(out[0], "|gv.NavigationReport| x: 450 y: 550 z: -100 veh_class: AUV battery_ok: true");
   EXPECT_EQ(out[1], "|gv.NavigationReport| x: -10000 y: 10000 z: 0");

@@ -118,4 +118,11 @@ RunResult run_with_input(const std::string& program, const std::vector<std::stri
   return {code.value_or(-1), child.stdout_text(), child.stderr_text()};
 }
 
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
 }  // namespace acomms::testing

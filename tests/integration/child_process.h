@@ -54,4 +54,8 @@ RunResult run(const std::string& program, const std::vector<std::string>& args,
 RunResult run_with_input(const std::string& program, const std::vector<std::string>& args,
                          const std::string& log_prefix, const std::string& input);
 
+// A program's output split at '\n', without the newlines (no empty last line
+// for output that ends with one).
+std::vector<std::string> lines_of(const std::string& text);
+
 }  // namespace acomms::testing

@@ -1,17 +1,39 @@
 #pragma once
 // Helpers for tests that run real acommsd processes: wait for the standard
-// health check, and open an API stub.
+// health check or another observable event, and open an API stub.
+//
+// A test never sleeps to let another process get somewhere: it waits for the
+// event that shows it got there (a status, a log line, a connection), with a
+// bound after which the test fails and says what it waited for.
 
 #include <grpcpp/grpcpp.h>
 
 #include <chrono>
+#include <cstdint>
+#include <functional>
 #include <memory>
+#include <set>
 #include <string>
 
 #include "acomms/v1/acomms.grpc.pb.h"
 #include "child_process.h"
 
 namespace acomms::testing {
+
+// Polls `condition` every `poll` until it holds (true) or `timeout` has
+// passed (false). The condition is always asked at least once.
+bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout,
+                std::chrono::milliseconds poll = std::chrono::milliseconds(20));
+
+// The connections accepted on the unix socket at `socket`, by inode (the
+// accepted ends carry the listening socket's path in /proc/net/unix).
+std::set<uint64_t> unix_connections(const std::string& socket);
+
+// Waits until a connection to `socket` that is not in `before` is open,
+// i.e. `client`, started after `before` was taken, has reached the daemon.
+// False if the client exits or `timeout` passes first.
+bool wait_connected(ChildProcess& client, const std::string& socket, const std::set<uint64_t>& before,
+                    std::chrono::milliseconds timeout = std::chrono::seconds(20));
 
 // Polls grpc.health.v1 on the unix socket until SERVING; false if the
 // daemon exits or `timeout` passes first.
@@ -22,5 +44,8 @@ std::unique_ptr<v1::Acomms::Stub> api(const std::string& socket);
 
 // A UDP port on 127.0.0.1 that was free a moment ago.
 int free_udp_port();
+
+// A TCP port on 127.0.0.1 that was free a moment ago.
+int free_tcp_port();
 
 }  // namespace acomms::testing

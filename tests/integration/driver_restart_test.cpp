@@ -13,6 +13,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "acomms/v1/modem_transmission.pb.h"
 #include "child_process.h"
@@ -25,7 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
-
 
 int bound_udp_socket(int port) {
   int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
@@ -68,7 +68,15 @@ TEST(DriverRestart, QueuedMessagesGoOutOnceTheTransportIsBack) {
     grpc::Status status = stub->Submit(&context, request, &response);
     ASSERT_TRUE(status.ok()) << status.error_message();
   }
-  std::this_thread::sleep_for(1500ms);
+  // Two failures mean the supervisor's restart ran, met the taken port
+  // again, and the daemon is still up to say so.
+  auto driver_failures = [&] {
+    grpc::ClientContext context;
+    v1::LinkStatusResponse link;
+    return stub->LinkStatus(&context, {}, &link).ok() ? link.driver().failures() : 0;
+  };
+  EXPECT_TRUE(wait_until([&] { return driver_failures() >= 2 || !daemon.running(); }, 20s))
+      << "the driver never failed twice: " << daemon.stderr_text();
   EXPECT_TRUE(daemon.running());
   EXPECT_NE(daemon.stderr_text().find("restart"), std::string::npos) << daemon.stderr_text();
   {

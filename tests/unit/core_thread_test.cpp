@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "core/event_loop.h"
+#include "core/logging.h"
 
 namespace acomms::core {
 namespace {
@@ -37,6 +38,7 @@ TEST(CoreThreadDeathTest, AnotherThreadFailsTheAssertionWhileTheCoreRuns) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   EXPECT_DEATH(
       {
+        configure_logging(v1::INFO);  // the daemon's logger: stderr
         EventLoop loop;
         loop.start();
         core_only_function();

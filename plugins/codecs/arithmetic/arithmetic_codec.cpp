@@ -322,10 +322,4 @@ void register_arithmetic_codec(dccl::CodecRegistry& registry, std::shared_ptr<co
   });
 }
 
-void register_arithmetic_codec(dccl::CodecRegistry& registry) {
-  // The global registry lives for the whole process: share it without owning.
-  register_arithmetic_codec(registry,
-                            std::shared_ptr<const ArithmeticModels>(&ArithmeticModels::global(), [](auto*) {}));
-}
-
 }  // namespace acomms::codecs

@@ -44,6 +44,10 @@
 #include "arithmetic/arithmetic_model.h"
 #include "dccl/registry.h"
 
+namespace google::protobuf {
+class Message;
+}  // namespace google::protobuf
+
 namespace acomms::codecs {
 
 inline constexpr const char* kArithmeticCodecName = "dccl.arithmetic";
@@ -51,9 +55,16 @@ inline constexpr const char* kArithmeticCodecName = "dccl.arithmetic";
 // the reference's arithmetic_extensions.proto).
 inline constexpr const char* kArithmeticOptionsExtension = "arithmetic";
 
+// The field of the application's DCCL settings that holds a Codec's models
+// (acommsd: dccl.arithmetic_models, a repeated acomms.codecs.v1.ArithmeticModel).
+inline constexpr const char* kArithmeticModelsSetting = "arithmetic_models";
+
 // Registers "dccl.arithmetic", finding models in `models` when schemas load.
 void register_arithmetic_codec(dccl::CodecRegistry& registry, std::shared_ptr<const ArithmeticModels> models);
-// Same, with ArithmeticModels::global().
-void register_arithmetic_codec(dccl::CodecRegistry& registry);
+// Registers "dccl.arithmetic" with the models listed in `settings`'
+// arithmetic_models field (none when settings is null or has no such
+// field): how dccl::install_plugin_codecs() sets the codec up for one Codec.
+// Throws dccl::Error (kSchema) "arithmetic_models: arithmetic model "x": <rule>".
+void install_arithmetic_codec(dccl::CodecRegistry& registry, const google::protobuf::Message* settings);
 
 }  // namespace acomms::codecs

@@ -138,11 +138,6 @@ ArithmeticModel ArithmeticModel::parse_text(std::string_view text) {
   return from_message(*message);
 }
 
-ArithmeticModels& ArithmeticModels::global() {
-  static ArithmeticModels models;
-  return models;
-}
-
 void ArithmeticModels::add(const ArithmeticModel& model) {
   model.validate();
   std::lock_guard<std::mutex> lock(mutex_);

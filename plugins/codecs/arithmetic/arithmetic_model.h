@@ -3,16 +3,21 @@
 // them in by name.
 //
 // A model is not part of a .proto: as in the reference DCCL, the application
-// registers it by name before loading the schemas whose fields say
-// (dccl.field).(arithmetic).model = "<name>". Loading copies the model into
-// the field's codec, so changing or re-adding a model later affects only
-// schemas loaded after that.
+// gives it by name before loading the schemas whose fields say
+// (dccl.field).(arithmetic).model = "<name>". Each dccl::Codec has its own
+// models (two Codecs may hold different models of one name): the codec is
+// registered with an ArithmeticModels, or installed from the application's
+// settings (arithmetic_codec.h). Loading copies the model into the field's
+// codec, so changing or re-adding a model later affects only schemas loaded
+// after that.
 //
+//   auto models = std::make_shared<acomms::codecs::ArithmeticModels>();
 //   acomms::codecs::ArithmeticModel m;
 //   m.name = "depth";
 //   m.value_bound = {0, 10, 50, 200, 6000};
 //   m.frequency = {40, 30, 20, 10};
-//   acomms::codecs::ArithmeticModels::global().add(m);
+//   models->add(m);
+//   acomms::codecs::register_arithmetic_codec(codec.registry(), models);
 //
 // Configuration can hold models as text (acomms/codecs/arithmetic_model.proto):
 // ArithmeticModel::parse_text() and from_message() read that form.
@@ -61,13 +66,9 @@ struct ArithmeticModel {
   static ArithmeticModel parse_text(std::string_view text);
 };
 
-// Models by name. Thread safe.
+// Models by name, for one Codec (or several that share them). Thread safe.
 class ArithmeticModels {
  public:
-  // The process-wide registry that register_plugin_codecs() binds the
-  // "dccl.arithmetic" codec to.
-  static ArithmeticModels& global();
-
   // Validates and adds model, replacing one of the same name.
   void add(const ArithmeticModel& model);
   void remove(const std::string& name);

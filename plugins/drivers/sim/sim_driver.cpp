@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/core_thread.h"
 #include "link/rate_table.h"
 #include "link/transmission_rules.h"
 #include "sim/loopback_medium.h"
@@ -82,7 +83,9 @@ SimDriver::SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler,
       loss_probability_(config.sim().loss_probability()),
       max_range_m_(config.sim().max_range_m()),
       scheduler_(scheduler),
-      medium_(std::move(medium)) {
+      medium_(std::move(medium)),
+      sequence_({"sim modem " + std::to_string(id_), id_},
+                {[this](const ModemTransmission& tx, bool report) { return transmit(tx, report); }}) {
   uint32_t seed = config.sim().seed() != 0 ? config.sim().seed() : default_seed;
   if (seed == 0) seed = std::random_device{}();
   // Mixed with the id so that nodes on one channel draw independently.
@@ -94,14 +97,18 @@ SimDriver::~SimDriver() { stop(); }
 
 void SimDriver::start(link::DriverCallbacks callbacks) {
   stop();
-  callbacks_ = std::move(callbacks);
+  sequence_.start(std::move(callbacks));
   if (medium_) {
-    medium_->open([this](const SimEnvelope& envelope) { hear(envelope); },
-                  [this](std::string_view bytes) {
-                    if (callbacks_.on_raw) callbacks_.on_raw(bytes, false);
-                  });
+    try {
+      medium_->open([this](const SimEnvelope& envelope) { hear(envelope); },
+                    [this](std::string_view bytes) {
+                      if (sequence_.callbacks().on_raw) sequence_.callbacks().on_raw(bytes, false);
+                    });
+    } catch (...) {
+      sequence_.stop();
+      throw;
+    }
   }
-  running_ = true;
   spdlog::info("sim modem {}: at ({}, {}, {}) m, c = {} m/s", id_, position_.x, position_.y, position_.z,
                sound_speed_);
 }
@@ -113,12 +120,12 @@ void SimDriver::stop() {
   arrivals_.clear();
   own_transmissions_.clear();
   busy_until_ = {};
-  running_ = false;
-  callbacks_ = {};
+  sequence_.stop();
 }
 
 void SimDriver::do_work() {
-  if (!running_) throw link::DriverError("sim modem " + std::to_string(id_) + " is not started");
+  ACOMMS_ASSERT_CORE_THREAD();
+  sequence_.check_running();
   auto horizon = scheduler_.clock().now() - kHistory;
   std::erase_if(own_transmissions_, [&](const Interval& i) { return i.end < horizon; });
 }
@@ -154,49 +161,20 @@ core::Scheduler::TaskId SimDriver::schedule(Clock::time_point when, std::functio
   return id;
 }
 
-void SimDriver::report(const ModemTransmission& transmission, bool ok, const std::string& error) {
-  if (!ok) spdlog::warn("sim modem {}: transmission not sent: {}", id_, error);
-  if (callbacks_.on_transmit_result) callbacks_.on_transmit_result(transmission, ok, error);
-}
+void SimDriver::initiate_transmission(const ModemTransmission& request) { sequence_.transmit(request); }
 
-void SimDriver::initiate_transmission(const ModemTransmission& request) {
-  if (!running_) throw link::DriverError("sim modem " + std::to_string(id_) + " is not started");
-  if (link::is_poll_request(request, id_)) {
-    // Third-party initiation: a mini-packet that tells node src to send.
-    ModemTransmission poll = request;
-    poll.clear_frame();
-    poll.set_type(ModemTransmission::DATA);
-    std::string error;
-    if (!transmit(poll, link::kMiniPacket, /*report=*/true, &error)) report(poll, false, error);
-    return;
-  }
-  if (request.type() != ModemTransmission::DATA) {
-    std::string error;
-    if (!transmit(request, link::kMiniPacket, true, &error)) report(request, false, error);
-    return;
-  }
-  send_data(request);
-}
-
-void SimDriver::send_data(ModemTransmission tx) {
-  std::string error = link::prepare_data(&tx, id_);
-  if (error.empty() && callbacks_.on_data_request) callbacks_.on_data_request(&tx);
-  if (error.empty()) error = link::check_frames(tx);
-  if (error.empty() && tx.frame_size() == 0) error = "nothing to send: the data request gave no frames";
-  if (!error.empty()) return report(tx, false, error);
-  if (tx.dest() < 0) tx.set_dest(0);  // the queues did not choose: broadcast
-  auto air_time = link::packet_air_time(*link::find_rate(tx.rate()), static_cast<uint32_t>(tx.frame_size()));
-  if (!transmit(tx, air_time, true, &error)) report(tx, false, error);
-}
-
-bool SimDriver::transmit(ModemTransmission tx, std::chrono::nanoseconds air_time, bool report_result,
-                         std::string* error) {
+std::string SimDriver::transmit(ModemTransmission tx, bool report_result) {
   Clock::time_point now = scheduler_.clock().now();
   if (now < busy_until_) {
     char until[64];
     std::snprintf(until, sizeof until, "%.3f", seconds_since_epoch(busy_until_));
-    *error = "modem " + std::to_string(id_) + " is busy transmitting until " + until;
-    return false;
+    return "modem " + std::to_string(id_) + " is busy transmitting until " + until;
+  }
+  // Polls, ACKs and other frameless packets are mini-packets.
+  std::chrono::nanoseconds air_time = link::kMiniPacket;
+  const link::ModemRate* rate = link::find_rate(tx.rate());
+  if (tx.type() == ModemTransmission::DATA && tx.frame_size() > 0 && rate != nullptr) {
+    air_time = link::packet_air_time(*rate, static_cast<uint32_t>(tx.frame_size()));
   }
   tx.set_time(seconds_since_epoch(now));
   Interval interval{now, now + air_time};
@@ -208,20 +186,21 @@ bool SimDriver::transmit(ModemTransmission tx, std::chrono::nanoseconds air_time
   }
   SimEnvelope envelope{id_, position_, now, air_time, tx};
   ++stats_.sent;
-  if (callbacks_.on_raw) callbacks_.on_raw(encode(envelope), true);
+  if (sequence_.callbacks().on_raw) sequence_.callbacks().on_raw(encode(envelope), true);
   if (medium_) {
     std::string problem = medium_->send(envelope);
     if (!problem.empty()) spdlog::debug("sim modem {}: {}", id_, problem);
   }
   if (report_result) {
     // The modem says a packet has gone once it is all in the water.
-    schedule(interval.end, [this, tx] { report(tx, true, ""); });
+    schedule(interval.end, [this, tx] { sequence_.report(tx, true, ""); });
   }
-  return true;
+  return "";
 }
 
 void SimDriver::hear(const SimEnvelope& envelope) {
-  if (!running_ || envelope.sender == id_) return;
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (!sequence_.running() || envelope.sender == id_) return;
   std::optional<SimHearing> heard = hearing(envelope, position_, sound_speed_);
   if (!heard) {
     spdlog::debug("sim modem {}: packet from {} too far to arrive", id_, envelope.sender);
@@ -277,24 +256,10 @@ void SimDriver::deliver(const Arrival& arrival) {
                 arrival.range_m / sound_speed_);
   rx.set_link_quality(quality);
   Clock::time_point answer_at = arrival.interval.end + kTurnaround;
-
   // The envelope says who really sent it: DATA under another node's id is a poll.
-  bool poll = rx.type() == ModemTransmission::DATA && rx.src() != arrival.envelope.sender;
-  if (poll) {
-    if (rx.src() == id_) {
-      ModemTransmission answer = link::make_poll_response(rx, id_);
-      send_when_free(answer_at, [this, answer] { send_data(answer); });
-    }
-    return;
-  }
-  if (link::should_report(rx, id_) && callbacks_.on_receive) callbacks_.on_receive(rx);
-  if (running_ && link::wants_ack(rx, id_)) {
-    ModemTransmission ack = link::make_ack(rx, id_);
-    send_when_free(answer_at, [this, ack] {
-      std::string error;
-      transmit(ack, link::kMiniPacket, /*report=*/false, &error);
-    });
-  }
+  sequence_.on_received(rx, {arrival.envelope.sender, [this, answer_at](std::function<void()> answer) {
+                               send_when_free(answer_at, std::move(answer));
+                             }});
 }
 
 void SimDriver::send_when_free(Clock::time_point when, std::function<void()> send) {

@@ -18,10 +18,10 @@
 //    that missed a packet's start cannot lock on to it afterwards).
 //  - Collisions: two packets whose arrivals overlap at a node destroy each
 //    other there (and only there: elsewhere they may arrive apart).
-// Protocol, as driver.h asks: DATA addressed to this node with
-// ack_requested is answered after a turnaround (kTurnaround) with a
-// software ACK listing all its frames, itself a packet subject to the same
-// physics; a poll (a request whose src is another node) is a short
+// Protocol, as driver.h asks, run by link::DriverSequence: DATA addressed to
+// this node with ack_requested is answered after a turnaround (kTurnaround)
+// with a software ACK listing all its frames, itself a packet subject to the
+// same physics; a poll (a request whose src is another node) is a short
 // mini-packet, and the polled node answers it after the turnaround with a
 // data request and its own DATA. A node is busy while it transmits: the
 // MAC's transmission then fails ("busy"); ACKs and poll answers wait.
@@ -47,6 +47,7 @@
 #include "acomms/v1/config.pb.h"
 #include "core/scheduler.h"
 #include "link/driver.h"
+#include "link/driver_sequence.h"
 #include "sim/sim_channel.h"
 #include "sim/sim_envelope.h"
 #include "sim/sim_medium.h"
@@ -108,14 +109,12 @@ class SimDriver final : public link::Driver {
   void hear(const SimEnvelope& envelope);
   void finish_arrival(uint64_t key);
   void deliver(const Arrival& arrival);
-  // Our own DATA (the MAC's, or the answer to a poll): data request, check, send.
-  void send_data(v1::ModemTransmission transmission);
-  // Puts a packet in the water now; false (and `error`) if busy.
-  bool transmit(v1::ModemTransmission transmission, std::chrono::nanoseconds air_time, bool report,
-                std::string* error);
+  // The sequence's Medium::send: puts a packet in the water now (DATA with
+  // frames for its air time at the rate, anything else as a mini-packet);
+  // "" or why not ("busy").
+  std::string transmit(v1::ModemTransmission transmission, bool report);
   // ACKs and poll answers: at `when`, or once we stop transmitting.
   void send_when_free(core::Clock::time_point when, std::function<void()> send);
-  void report(const v1::ModemTransmission& transmission, bool ok, const std::string& error);
   core::Scheduler::TaskId schedule(core::Clock::time_point when, std::function<void()> task);
   double uniform();
 
@@ -127,8 +126,7 @@ class SimDriver final : public link::Driver {
   core::Scheduler& scheduler_;
   std::unique_ptr<SimMedium> medium_;
   std::mt19937_64 rng_;
-  link::DriverCallbacks callbacks_;
-  bool running_ = false;
+  link::DriverSequence sequence_;  // holds the callbacks between start() and stop()
   core::Clock::time_point busy_until_;
   std::vector<Interval> own_transmissions_;  // recent, for half-duplex
   std::map<uint64_t, Arrival> arrivals_;     // packets on their way to us

@@ -23,7 +23,7 @@
 namespace acomms::drivers {
 
 struct SimPosition {
-  double x = 0, y = 0, z = 0;  // metres (config.proto's Position frame)
+  double x = 0, y = 0, z = 0;  // metres (the frame of sim.proto's Position)
 };
 
 double distance(const SimPosition& a, const SimPosition& b);

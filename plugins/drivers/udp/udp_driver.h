@@ -5,8 +5,8 @@
 // tether), with the same frame limits as the acoustic modem so that the
 // queues build the same frames.
 //
-// It behaves like a modem for the MAC and the queues (driver.h): frame
-// limits from udp.max_frame_bytes / udp.max_num_frames or the Micro-Modem
+// It behaves like a modem for the MAC and the queues (driver.h, run by
+// link::DriverSequence): frame limits from udp.max_frame_bytes / udp.max_num_frames or the Micro-Modem
 // table for the rate, software ACKs for DATA to us with ack_requested, and
 // polls: a request whose src is another node is sent as an empty DATA with
 // that node's src, and a node hearing DATA with its own id as src answers
@@ -22,6 +22,7 @@
 #include "acomms/v1/config.pb.h"
 #include "core/scheduler.h"
 #include "link/driver.h"
+#include "link/driver_sequence.h"
 #include "link/udp_transport.h"
 
 namespace acomms::drivers {
@@ -49,18 +50,15 @@ class UdpDriver final : public link::Driver {
 
  private:
   void on_datagram(std::string_view bytes, const std::string& from);
-  void send_data(v1::ModemTransmission transmission);
-  // Sends and reports (when `report`); false if it could not go out.
-  bool send(v1::ModemTransmission transmission, bool report);
+  // The sequence's Medium::send: one datagram to every peer, reported at
+  // once (when `report`); "" or why it could not go out.
+  std::string send(v1::ModemTransmission transmission, bool report);
 
   int32_t id_;
-  uint32_t max_frame_bytes_;
-  uint32_t max_num_frames_;
   std::string listen_;
   core::Scheduler& scheduler_;
   link::UdpTransport transport_;
-  link::DriverCallbacks callbacks_;
-  bool running_ = false;
+  link::DriverSequence sequence_;  // holds the callbacks between start() and stop()
   UdpDriverStats stats_;
 };
 

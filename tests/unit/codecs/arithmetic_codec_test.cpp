@@ -22,7 +22,8 @@
 #include "arithmetic/arithmetic_coder.h"
 #include "dccl/codec.h"
 #include "dccl/hex.h"
-#include "register_codecs.h"
+#include "acomms/v1/config.pb.h"
+#include "dccl/plugin_codecs.h"
 
 namespace acomms::codecs {
 namespace {
@@ -486,12 +487,15 @@ TEST_F(ArithmeticCodecTest, SizeBoundsAreReported) {
 }
 
 // A definition written for the reference library (its package, option
-// syntax and import) loads unchanged and finds models registered through the
-// process-wide registry that register_plugin_codecs() uses.
-TEST_F(ArithmeticCodecTest, ReferenceStyleDefinitionLoadsWithGlobalModels) {
-  ArithmeticModels::global().add(spec_model());
+// syntax and import) loads unchanged and finds the models given in the
+// Codec's settings (acommsd's dccl.arithmetic_models), installed the way
+// the daemon installs every plugin codec.
+TEST_F(ArithmeticCodecTest, ReferenceStyleDefinitionLoadsWithModelsFromSettings) {
+  acomms::v1::DcclConfig settings;
+  ASSERT_TRUE(pb::TextFormat::ParseFromString(
+      "arithmetic_models { name: 'model' value_bound: [0, 1, 2] frequency: [5, 1] eof_frequency: 4 }", &settings));
   dccl::Codec codec;
-  register_plugin_codecs(codec.registry());
+  dccl::install_plugin_codecs(codec.registry(), &settings);
   std::string path = (dir_ / "reference.proto").string();
   std::ofstream(path) << R"(syntax = "proto2";
 import "dccl/option_extensions.proto";
@@ -516,7 +520,6 @@ message ArithmeticDoubleTestMsg
   auto msg = codec.new_message("dccl.test.arith.ArithmeticDoubleTestMsg");
   ASSERT_TRUE(pb::TextFormat::ParseFromString("value: [0, 0, 0, 1]", msg.get()));
   EXPECT_EQ(to_hex(codec.encode(*msg)), "020b");
-  ArithmeticModels::global().remove("model");
 }
 
 // --------------------------------------------------------------- models

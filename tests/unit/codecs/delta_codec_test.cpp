@@ -16,7 +16,7 @@
 
 #include "dccl/codec.h"
 #include "dccl/hex.h"
-#include "register_codecs.h"
+#include "dccl/plugin_codecs.h"
 
 namespace acomms::codecs {
 namespace {
@@ -31,7 +31,7 @@ class DeltaCodecTest : public ::testing::Test {
   void SetUp() override {
     dir_ = fs::temp_directory_path() / ("acomms-delta-" + std::to_string(::getpid()));
     fs::create_directories(dir_);
-    register_plugin_codecs(codec_.registry());
+    dccl::install_plugin_codecs(codec_.registry());
   }
   void TearDown() override { fs::remove_all(dir_); }
 
@@ -51,7 +51,7 @@ class DeltaCodecTest : public ::testing::Test {
   // Each schema gets a codec of its own: a pool holds one test.Series.
   std::string load_error(const std::string& fields) {
     dccl::Codec codec;
-    register_plugin_codecs(codec.registry());
+    dccl::install_plugin_codecs(codec.registry());
     try {
       load_into(codec, fields);
     } catch (const dccl::Error& e) {

@@ -1,9 +1,12 @@
-#include "register_drivers.h"
+// Drivers by name: every folder under plugins/drivers adds itself to
+// link::DriverRegistry::linked(), and "sim" can be rebound to one channel.
 
 #include <gtest/gtest.h>
 
+#include "link/driver_registry.h"
 #include "sim/sim_channel.h"
 #include "sim/sim_driver.h"
+#include "sim/sim_plugin.h"
 
 namespace acomms {
 namespace {
@@ -11,8 +14,7 @@ namespace {
 using std::chrono::seconds;
 
 TEST(RegisterDriversTest, SimAndUdpByName) {
-  link::DriverRegistry registry;
-  register_builtin_drivers(registry);
+  link::DriverRegistry registry = link::DriverRegistry::linked();
   EXPECT_EQ(registry.names(), (std::vector<std::string>{"sim", "udp"}));
 
   core::SimulatedScheduler scheduler(core::Clock::time_point(seconds(1'700'000'000)));
@@ -42,11 +44,21 @@ TEST(RegisterDriversTest, SimAndUdpByName) {
   driver->stop();
 }
 
+TEST(RegisterDriversTest, UnknownNameListsTheLinkedDrivers) {
+  core::SimulatedScheduler scheduler(core::Clock::time_point(seconds(1'700'000'000)));
+  v1::DriverConfig config;
+  try {
+    link::DriverRegistry::linked().create("micromodem9", {config, scheduler});
+    FAIL() << "built a driver nobody registered";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "no driver \"micromodem9\" (known: sim, udp)");
+  }
+}
+
 TEST(RegisterDriversTest, SimChannelDriverPutsEveryNodeOnTheChannel) {
-  link::DriverRegistry registry;
-  register_builtin_drivers(registry);
+  link::DriverRegistry registry = link::DriverRegistry::linked();
   auto channel = drivers::SimChannel::create(5);
-  register_sim_channel_driver(registry, channel);
+  drivers::register_sim_channel_driver(registry, channel);
   core::SimulatedScheduler scheduler(core::Clock::time_point(seconds(1'700'000'000)));
   v1::DriverConfig one, two;
   one.set_modem_id(1);

@@ -5,11 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
 #include <memory>
 
+#include "eval/simulated_channel.h"
 #include "mac/blank_slot.h"
-#include "mac/discovery_simulation.h"
-#include "mac/simulated_channel.h"
 #include "mac_test_util.h"
 
 namespace acomms::mac {
@@ -68,7 +69,7 @@ TEST(BlankSlot, AnywhereRuleNeverLastWhenExcited) {
               blank_slot_index(BlankRule::kFigure, 2, k, 5, 3));
 }
 
-// Nodes on one SimulatedChannel, for the hand-driven tests.
+// Nodes on one simulated channel (daemon/eval), for the hand-driven tests.
 struct Network {
   explicit Network(core::Clock::time_point start, double p_collide = 1)
       : scheduler(start), channel(scheduler, std::chrono::milliseconds(13500), p_collide, 7) {}
@@ -89,7 +90,7 @@ struct Network {
   }
 
   core::SimulatedScheduler scheduler;
-  SimulatedChannel channel;
+  eval::SimulatedChannel channel;
   std::vector<std::unique_ptr<AutoDiscoveryMac>> macs;
   std::vector<v1::ModemTransmission> sent;
 };
@@ -139,13 +140,22 @@ TEST(AutoDiscoveryMac, TwoNodesDiscoverEachOtherAndShareOneCycle) {
   EXPECT_EQ(a.cycle_start(), b.cycle_start());
   EXPECT_EQ(srcs(a.cycle()), srcs(b.cycle()));
   EXPECT_EQ(a.cycle().size(), 3u);
-  // From then on, never together: each sends once per 45 s cycle.
+  // From then on, never together: each sends exactly once in every 45 s
+  // cycle (the blank may move within a cycle; the nodes still agree).
   const size_t before = net.sent.size();
   net.scheduler.run_until(day_s(10 * 45 + 20 * 45));
   std::map<double, int> per_time;
-  for (size_t i = before; i < net.sent.size(); ++i) ++per_time[net.sent[i].time()];
+  std::map<int64_t, std::vector<int32_t>> senders_per_cycle;
+  for (size_t i = before; i < net.sent.size(); ++i) {
+    ++per_time[net.sent[i].time()];
+    senders_per_cycle[static_cast<int64_t>((net.sent[i].time() - kDay) / 45)].push_back(net.sent[i].src());
+  }
   for (const auto& [time, count] : per_time) EXPECT_EQ(count, 1) << time - kDay;
-  EXPECT_EQ(net.sent.size() - before, 40u);
+  for (int64_t cycle = 10; cycle < 30; ++cycle) {
+    std::vector<int32_t> senders = senders_per_cycle[cycle];
+    std::sort(senders.begin(), senders.end());
+    EXPECT_EQ(senders, (std::vector<int32_t>{1, 2})) << "cycle " << cycle;
+  }
 }
 
 TEST(AutoDiscoveryMac, SilentNodeExpiresAfterExpireCycles) {
@@ -206,71 +216,6 @@ TEST(AutoDiscoveryMac, HearingAnUnknownNodeWhileWaitingReplansForTheLongerCycle)
   net.scheduler.run_until(day_s(1035));
   ASSERT_EQ(net.sent.size(), 1u);
   EXPECT_DOUBLE_EQ(net.sent[0].time(), kDay + 1035.0);
-}
-
-// The seed's Table 2.7: two vehicles, 15 s slots, C = size + 1 = 3.
-// A shared collision-free cycle within ten cycles, whatever the power-on.
-TEST(DiscoverySimulation, SeedTable27ConvergesWithinTenCycles) {
-  const std::vector<std::vector<double>> starts = {
-      {0}, {0, 20}, {7, 100}, {3600, 3600}, {43210.5, 43290}, {86000, 86100}, {500, 520}};
-  for (const std::vector<double>& start : starts) {
-    DiscoveryScenario scenario;
-    scenario.ids = {1, 2};
-    scenario.start_s = start;
-    scenario.slot_seconds = 15;
-    scenario.coolness = 3;
-    DiscoveryResult result = simulate_discovery(scenario, false);
-    ASSERT_TRUE(result.converged_at_s.has_value()) << start.front();
-    EXPECT_EQ(result.cycle_seconds, 45);
-    EXPECT_LE(*result.converged_at_s - result.last_start_s, 10 * 45) << start.front();
-  }
-  DiscoveryScenario scenario;
-  scenario.ids = {1, 2};
-  scenario.start_s = {0};
-  scenario.slot_seconds = 15;
-  scenario.coolness = 3;
-  DiscoveryResult result = simulate_discovery(scenario, true);
-  // Both lone (30 s cycles) collide until node 2's cycle at 120 s is
-  // excited and node 1's is not; both discover there, wait for the 45 s grid
-  // (180 s) and share [1 2 _] from then on.
-  EXPECT_EQ(*result.converged_at_s, 180);
-  EXPECT_EQ(result.collisions, 4);
-}
-
-TEST(DiscoverySimulation, ThreeNodesConverge) {
-  DiscoveryScenario scenario;
-  scenario.ids = {3, 50, 77};
-  scenario.start_s = {1000, 1010, 1100};
-  scenario.coolness = 4;
-  DiscoveryResult result = simulate_discovery(scenario, true);
-  ASSERT_TRUE(result.converged_at_s.has_value());
-  EXPECT_EQ(result.cycle_seconds, 60);
-  // The trace ends two shared cycles after convergence: [3 50 77 _] or
-  // with the blank third.
-  const SlotTrace& last = result.trace.back();
-  for (const NodeSlot& node : last.nodes) EXPECT_NE(node.action, NodeAction::kWait);
-}
-
-// The figure's rule can lock two nodes that are each the lowest id they
-// know in equally long cycles (see blank_slot.h); kAnywhere frees them.
-TEST(DiscoverySimulation, FigureRuleLockAndTheAnywhereRule) {
-  DiscoveryScenario scenario;
-  scenario.ids = {12, 90, 33};
-  scenario.start_s = {1000};
-  scenario.coolness = 4;
-  scenario.horizon_cycles = 100;
-  EXPECT_FALSE(simulate_discovery(scenario, false).converged_at_s.has_value());
-  scenario.blank_rule = BlankRule::kAnywhere;
-  EXPECT_TRUE(simulate_discovery(scenario, false).converged_at_s.has_value());
-}
-
-TEST(DiscoverySimulation, SameSeedSameResult) {
-  DiscoveryMonteCarloConfig config;
-  config.sizes = {3};
-  config.trials = 10;
-  config.p_collide = {0.5};
-  EXPECT_EQ(format_discovery_csv(simulate_discovery_monte_carlo(config)),
-            format_discovery_csv(simulate_discovery_monte_carlo(config)));
 }
 
 }  // namespace

@@ -34,6 +34,21 @@ std::string error_of(const std::string& text, int32_t own_id = 1) {
   return "";
 }
 
+// A config that names no blank rule gets the one that converges; each name
+// picks its rule, so a fleet can keep "figure" while it upgrades.
+TEST(MacFactory, AutoDiscoveryBlankRuleDefaultsToAnywhereAndEachNamePicksItsRule) {
+  core::SimulatedScheduler scheduler(day_s(0));
+  auto rule_of = [&](const std::string& extra) {
+    std::unique_ptr<Mac> mac = make_mac(
+        parse("name: 'auto_discovery' slot_seconds: 15 coolness: 4 expire_cycles: 5 " + extra), 1, scheduler);
+    return dynamic_cast<AutoDiscoveryMac&>(*mac).blank_rule();
+  };
+  EXPECT_EQ(rule_of(""), BlankRule::kAnywhere);
+  EXPECT_EQ(rule_of("blank_rule: 'anywhere'"), BlankRule::kAnywhere);
+  EXPECT_EQ(rule_of("blank_rule: 'figure'"), BlankRule::kFigure);
+  EXPECT_EQ(rule_of("blank_rule: 'congruence'"), BlankRule::kCongruence);
+}
+
 TEST(MacFactory, BuildsEachKind) {
   core::SimulatedScheduler scheduler(day_s(0));
   const std::string slots = "slot { src: 1 seconds: 10 } slot { src: 2 dest: 1 rate: 3 seconds: 5 }";

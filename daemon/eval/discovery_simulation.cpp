@@ -1,4 +1,4 @@
-#include "mac/discovery_simulation.h"
+#include "eval/discovery_simulation.h"
 
 #include <algorithm>
 #include <chrono>
@@ -10,14 +10,21 @@
 #include <stdexcept>
 
 #include "core/scheduler.h"
+#include "eval/simulated_channel.h"
 #include "mac/auto_discovery_mac.h"
 #include "mac/cycle_grid.h"
-#include "mac/simulated_channel.h"
+#include "util/splitmix64.h"
 
-namespace acomms::mac {
+namespace acomms::eval {
 namespace {
 
+using mac::AutoDiscoveryConfig;
+using mac::AutoDiscoveryMac;
+using mac::BlankRule;
+using mac::blank_rule_name;
+using mac::Nanoseconds;
 using time_point = core::Clock::time_point;
+using util::SplitMix64;
 
 // The simulated day: 2024-06-01T00:00:00Z.
 constexpr int64_t kDayStart = 1717200000;
@@ -46,10 +53,10 @@ NodeAction action_of(AutoDiscoveryMac::Activity activity) {
   return NodeAction::kOff;
 }
 
-std::vector<int32_t> srcs_of(const Cycle& cycle) {
+std::vector<int32_t> srcs_of(const mac::Cycle& cycle) {
   std::vector<int32_t> srcs;
   srcs.reserve(cycle.size());
-  for (const Slot& slot : cycle) srcs.push_back(slot.src);
+  for (const mac::Slot& slot : cycle) srcs.push_back(slot.src);
   return srcs;
 }
 
@@ -107,7 +114,7 @@ DiscoveryResult simulate_discovery(const DiscoveryScenario& scenario, bool keep_
   config.blank_rule = scenario.blank_rule;
 
   core::SimulatedScheduler scheduler(first_start);
-  const Nanoseconds slot = to_nanoseconds(scenario.slot_seconds);
+  const Nanoseconds slot = mac::to_nanoseconds(scenario.slot_seconds);
   SimulatedChannel channel(scheduler, slot * 9 / 10, scenario.p_collide, scenario.seed);
   std::optional<SimulatedChannel::SlotOutcome> outcome;
   channel.set_observer([&outcome](const SimulatedChannel::SlotOutcome& o) { outcome = o; });
@@ -134,7 +141,7 @@ DiscoveryResult simulate_discovery(const DiscoveryScenario& scenario, bool keep_
   const Nanoseconds full_cycle = slot * static_cast<int64_t>(n + 1);
   const time_point end = last_start + std::chrono::duration_cast<Nanoseconds>(
                                           full_cycle * scenario.horizon_cycles);
-  const CycleGrid slots(std::nullopt, slot);
+  const mac::CycleGrid slots(std::nullopt, slot);
   const Nanoseconds probe = std::max(Nanoseconds(1), slot / 100);
 
   // Start of the cycle from which the network has been converged, if it is.
@@ -259,15 +266,6 @@ std::string cycle_text(const std::vector<int32_t>& cycle) {
   return out + "]";
 }
 
-const char* blank_rule_name(BlankRule rule) {
-  switch (rule) {
-    case BlankRule::kFigure: return "figure";
-    case BlankRule::kCongruence: return "congruence";
-    case BlankRule::kAnywhere: return "anywhere";
-  }
-  return "?";
-}
-
 const char* action_name(NodeAction action) {
   switch (action) {
     case NodeAction::kOff: return "off";
@@ -365,23 +363,6 @@ std::string format_discovery(const DiscoveryScenario& scenario, const DiscoveryR
 
 namespace {
 
-// SplitMix64: small, fast and good enough to draw networks.
-class SplitMix64 {
- public:
-  explicit SplitMix64(uint64_t seed) : state_(seed) {}
-  uint64_t next() {
-    uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-  uint64_t below(uint64_t n) { return next() % n; }
-
- private:
-  uint64_t state_;
-};
-
 struct Network {
   std::vector<int32_t> ids;
   std::vector<double> start_s;
@@ -478,4 +459,4 @@ std::string format_discovery_csv(const std::vector<DiscoveryPoint>& points) {
   return out.str();
 }
 
-}  // namespace acomms::mac
+}  // namespace acomms::eval

@@ -41,7 +41,7 @@
 
 #include "mac/blank_slot.h"
 
-namespace acomms::mac {
+namespace acomms::eval {
 
 struct DiscoveryScenario {
   std::vector<int32_t> ids;
@@ -49,7 +49,7 @@ struct DiscoveryScenario {
   double slot_seconds = 15;
   uint32_t coolness = 3;
   uint32_t expire_cycles = 5;
-  BlankRule blank_rule = BlankRule::kFigure;
+  mac::BlankRule blank_rule = mac::kDefaultBlankRule;
   double p_collide = 1;
   uint64_t seed = 1;
   // Give up this long after the last power-on, in cycles of the full
@@ -97,13 +97,14 @@ std::string format_discovery(const DiscoveryScenario& scenario, const DiscoveryR
 
 struct DiscoveryMonteCarloConfig {
   std::vector<int> sizes = {3, 4, 5, 6};
-  // 0 stands for "network size + 1" (the seed's recommendation).
+  // 0 stands for "network size + 1" (Schneider (2013), section 2.4.3,
+  // recommends it).
   std::vector<uint32_t> coolness = {0};
   std::vector<double> p_collide = {1, 0.75, 0.5};
   int trials = 200;
   double slot_seconds = 15;
   uint32_t expire_cycles = 5;
-  BlankRule blank_rule = BlankRule::kFigure;
+  mac::BlankRule blank_rule = mac::kDefaultBlankRule;
   double start_window_cycles = 4;
   double horizon_cycles = 200;
   uint64_t seed = 1;
@@ -123,4 +124,4 @@ std::vector<DiscoveryPoint> simulate_discovery_monte_carlo(const DiscoveryMonteC
 // "nodes,coolness,p_collide,collision_prob,mean_discovery_slots,fail_pct".
 std::string format_discovery_csv(const std::vector<DiscoveryPoint>& points);
 
-}  // namespace acomms::mac
+}  // namespace acomms::eval

@@ -1,4 +1,4 @@
-#include "queue/market_simulation.h"
+#include "eval/market_simulation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,27 +7,12 @@
 #include <string>
 
 #include "queue/priority.h"
+#include "util/splitmix64.h"
 
-namespace acomms::queue {
+namespace acomms::eval {
 namespace {
 
-// SplitMix64: small, fast, and fully specified, so a seed gives the same
-// numbers with any standard library (std::uniform_real_distribution does not).
-class SplitMix64 {
- public:
-  explicit SplitMix64(uint64_t seed) : state_(seed) {}
-  uint64_t next() {
-    uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
-  // Uniform on [0, 1), 53 random bits.
-  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-
- private:
-  uint64_t state_;
-};
+using util::SplitMix64;
 
 uint64_t trial_seed(uint64_t seed, int trial) {
   SplitMix64 mix(seed ^ (0xD1B54A32D192ED03ULL * (static_cast<uint64_t>(trial) + 1)));
@@ -59,7 +44,7 @@ int choose(Policy policy, const std::vector<MarketMessageType>& types,
     int candidate = static_cast<int>(i);
     if (best < 0) {
       best = candidate;
-      best_priority = dynamic_priority(types[i].value_base, types[i].ttl_s, t - last_sent[i]);
+      best_priority = queue::dynamic_priority(types[i].value_base, types[i].ttl_s, t - last_sent[i]);
       continue;
     }
     const MarketMessageType& a = types[i];
@@ -67,7 +52,7 @@ int choose(Policy policy, const std::vector<MarketMessageType>& types,
     bool better = false;  // on a full tie the earlier type (best) stays
     switch (policy) {
       case Policy::kDynamic: {
-        double priority = dynamic_priority(a.value_base, a.ttl_s, t - last_sent[i]);
+        double priority = queue::dynamic_priority(a.value_base, a.ttl_s, t - last_sent[i]);
         if (nearly_equal(priority, best_priority)) {
           better = last_sent[i] < last_sent[best];
         } else {
@@ -139,7 +124,7 @@ void validate(const MarketConfig& config, const std::vector<double>& p_empty) {
 
 }  // namespace
 
-std::vector<MarketMessageType> seed_market_types() {
+std::vector<MarketMessageType> schneider2013_market_types() {
   return {{1, 1000}, {2, 2000}, {1, 3000}};
 }
 
@@ -197,4 +182,4 @@ std::string format_market_csv(const std::vector<MarketPoint>& points) {
   return out;
 }
 
-}  // namespace acomms::queue
+}  // namespace acomms::eval

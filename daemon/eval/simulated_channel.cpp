@@ -1,8 +1,8 @@
-#include "mac/simulated_channel.h"
+#include "eval/simulated_channel.h"
 
 #include <utility>
 
-namespace acomms::mac {
+namespace acomms::eval {
 
 SimulatedChannel::SimulatedChannel(core::Scheduler& scheduler, std::chrono::nanoseconds delay,
                                    double p_collide, uint64_t seed)
@@ -45,4 +45,4 @@ void SimulatedChannel::deliver(core::Clock::time_point start) {
   if (observer_) observer_(outcome);
 }
 
-}  // namespace acomms::mac
+}  // namespace acomms::eval

@@ -27,7 +27,7 @@
 #include "acomms/v1/modem_transmission.pb.h"
 #include "core/scheduler.h"
 
-namespace acomms::mac {
+namespace acomms::eval {
 
 class SimulatedChannel {
  public:
@@ -72,4 +72,4 @@ class SimulatedChannel {
   Observer observer_;
 };
 
-}  // namespace acomms::mac
+}  // namespace acomms::eval

@@ -1,13 +1,12 @@
-// The seed's marketplace evaluation (daemon/queue/market_simulation.h) and
-// `acommsctl sim queue-market`.
+// The marketplace evaluation of Schneider (2013), section 2.3.4
+// (daemon/eval/market_simulation.h), and `acommsctl sim queue-market`.
 
-#include "queue/market_simulation.h"
+#include "eval/market_simulation.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -16,7 +15,7 @@
 
 #include "child_process.h"
 
-namespace acomms::queue {
+namespace acomms::eval {
 namespace {
 
 MarketConfig config_with_ratio(double ratio) {
@@ -29,8 +28,8 @@ MarketPoint at(const MarketConfig& config, double p_empty) {
   return simulate_market(config, {p_empty}).at(0);
 }
 
-TEST(MarketSimulation, SeedTableAndGrid) {
-  std::vector<MarketMessageType> types = seed_market_types();
+TEST(MarketSimulation, Schneider2013TableAndGrid) {
+  std::vector<MarketMessageType> types = schneider2013_market_types();
   ASSERT_EQ(types.size(), 3u);
   EXPECT_EQ(types[0].value_base, 1);
   EXPECT_EQ(types[0].ttl_s, 1000);
@@ -80,7 +79,7 @@ TEST(MarketSimulation, PointIndependentOfTheOtherPoints) {
   EXPECT_EQ(alone.lowest_ttl, within.lowest_ttl);
 }
 
-// The seed's first finding: when variety pays (tau_s = 0.1 tau), the dynamic
+// Schneider (2013)'s first finding: when variety pays (tau_s = 0.1 tau), the dynamic
 // queue scores highest with every queue always full.
 TEST(MarketSimulation, DynamicWinsWhenVarietyPays) {
   MarketPoint p = at(config_with_ratio(0.1), 0.0);
@@ -88,7 +87,7 @@ TEST(MarketSimulation, DynamicWinsWhenVarietyPays) {
   EXPECT_GT(p.dynamic, p.lowest_ttl);
 }
 
-// The seed's second finding: when variety pays little (tau_s = 10 tau), a
+// Schneider (2013)'s second finding: when variety pays little (tau_s = 10 tau), a
 // fixed priority on value_base beats the dynamic queue.
 TEST(MarketSimulation, FixedValueWinsWhenVarietyPaysLittle) {
   MarketPoint p = at(config_with_ratio(10), 0.0);
@@ -211,20 +210,13 @@ class QueueMarketCommand : public ::testing::Test {
     return acomms::testing::run(ACOMMSCTL_BINARY, args, (dir_ / "ctl").string());
   }
 
-  static std::vector<std::string> lines(const std::string& text) {
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) out.push_back(line);
-    return out;
-  }
-
   std::filesystem::path dir_;
 };
 
 TEST_F(QueueMarketCommand, PrintsHeaderAndOneLinePerPoint) {
   acomms::testing::RunResult result = sim({"--tau-s-ratio", "0.1"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  std::vector<std::string> out = lines(result.out);
+  std::vector<std::string> out = acomms::testing::lines_of(result.out);
   ASSERT_EQ(out.size(), 11u) << result.out;
   EXPECT_EQ(out[0], "p_empty,dynamic,fixed_value,lowest_ttl");
   EXPECT_EQ(out[1].rfind("0,", 0), 0u) << out[1];
@@ -247,7 +239,7 @@ TEST_F(QueueMarketCommand, HonoursItsOptions) {
   config.transmissions = 30;
   config.tau_s = 60;
   EXPECT_EQ(result.out, format_market_csv(simulate_market(config, {0, 0.5, 1})));
-  EXPECT_EQ(lines(result.out).back(), "1,0.0000,0.0000,0.0000");
+  EXPECT_EQ(acomms::testing::lines_of(result.out).back(), "1,0.0000,0.0000,0.0000");
 }
 
 TEST_F(QueueMarketCommand, BadUsageExitsTwo) {
@@ -258,4 +250,4 @@ TEST_F(QueueMarketCommand, BadUsageExitsTwo) {
 }
 
 }  // namespace
-}  // namespace acomms::queue
+}  // namespace acomms::eval

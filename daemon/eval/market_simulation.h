@@ -1,6 +1,8 @@
 #pragma once
-// The seed's "marketplace" evaluation of the dynamic priority (section 2.3.4
-// of T. Schneider's 2013 MIT thesis), as a library function with no I/O.
+// The "marketplace" evaluation of the dynamic priority in Schneider (2013),
+// section 2.3.4 (T. Schneider, "Advances in Integrating Autonomy with
+// Acoustic Communications for Intelligent Networks of Marine Robots", PhD
+// thesis, MIT/WHOI), as a library function with no I/O.
 // `acommsctl sim queue-market` prints it.
 //
 // The experiment compares three ways of choosing which queue gets the one
@@ -8,7 +10,7 @@
 //
 // Model, exactly as implemented
 // -----------------------------
-// * Message types (the seed's Table 2.4), one queue each:
+// * Message types (Schneider (2013), Table 2.4), one queue each:
 //       type  value_base  ttl
 //        1        1       1000 s
 //        2        2       2000 s
@@ -48,9 +50,9 @@
 //   requested, and the policy comparison is paired.
 //
 // Sources: the experiment's parameters and score come from the issue's
-// summary of the seed (Table 2.4, N, tau, P_empty, S = D_b + D_s - D_e); the
-// priority and "t_last = time of the last send from this queue" from the
-// goby-acomms queue documentation. The thesis text of 2.3.4 was not
+// summary of Schneider (2013) (Table 2.4, N, tau, P_empty,
+// S = D_b + D_s - D_e); the priority and "t_last = time of the last send
+// from this queue" from the goby-acomms queue documentation. The thesis text of 2.3.4 was not
 // available, so the arrival model (per-transmission emptiness, age U[0, tau)),
 // t_last = 0 at the start, the lossless link and the tie rules are choices
 // made here, as the simplest reading.
@@ -69,21 +71,21 @@
 #include <string>
 #include <vector>
 
-namespace acomms::queue {
+namespace acomms::eval {
 
 struct MarketMessageType {
   double value_base = 1;
   double ttl_s = 1;
 };
 
-// Table 2.4 of the seed: (1, 1000 s), (2, 2000 s), (1, 3000 s).
-std::vector<MarketMessageType> seed_market_types();
+// Schneider (2013), Table 2.4: (1, 1000 s), (2, 2000 s), (1, 3000 s).
+std::vector<MarketMessageType> schneider2013_market_types();
 
 // 0, 0.1, ..., 0.9.
 std::vector<double> default_p_empty_grid();
 
 struct MarketConfig {
-  std::vector<MarketMessageType> types = seed_market_types();
+  std::vector<MarketMessageType> types = schneider2013_market_types();
   int transmissions = 100;        // N
   double tau_s = 100;             // tau: seconds between transmissions
   double tau_s_ratio = 0.1;       // R: the variety time scale tau_s = R * tau
@@ -109,4 +111,4 @@ std::vector<MarketPoint> simulate_market(const MarketConfig& config,
 // "p_empty,dynamic,fixed_value,lowest_ttl\n" then one line per point.
 std::string format_market_csv(const std::vector<MarketPoint>& points);
 
-}  // namespace acomms::queue
+}  // namespace acomms::eval

@@ -1,0 +1,20 @@
+#include "sim/sim_plugin.h"
+
+#include "sim/sim_driver.h"
+
+namespace acomms::drivers {
+namespace {
+
+const link::DriverRegistrar registrar("sim", [](const link::DriverContext& context) -> std::unique_ptr<link::Driver> {
+  return std::make_unique<SimDriver>(context.config, context.scheduler, context.io_context);
+});
+
+}  // namespace
+
+void register_sim_channel_driver(link::DriverRegistry& registry, std::shared_ptr<SimChannel> channel) {
+  registry.add("sim", [channel](const link::DriverContext& context) -> std::unique_ptr<link::Driver> {
+    return std::make_unique<SimDriver>(context.config, context.scheduler, channel);
+  });
+}
+
+}  // namespace acomms::drivers

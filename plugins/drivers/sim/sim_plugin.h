@@ -1,0 +1,18 @@
+#pragma once
+// "sim" by name. sim_plugin.cpp adds it to link::DriverRegistry::linked():
+// a loopback node from driver.sim (listen/peers), or an isolated one.
+//
+// Several simulated nodes in one process (on one SimulatedScheduler, e.g.
+// `acommsctl sim` or a system test) share a SimChannel instead: replace
+// "sim" in a copy of the registry so that every node it builds joins it.
+
+#include <memory>
+
+#include "link/driver_registry.h"
+#include "sim/sim_channel.h"
+
+namespace acomms::drivers {
+
+void register_sim_channel_driver(link::DriverRegistry& registry, std::shared_ptr<SimChannel> channel);
+
+}  // namespace acomms::drivers
