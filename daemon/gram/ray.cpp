@@ -1,0 +1,198 @@
+// Ray and dynamic ray tracing: shared/spec/gram.md §4.1–§4.6.
+#include "gram/ray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "gram/reflection.h"
+
+namespace acomms::gram {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr std::size_t kMaxSteps = 2'000'000;    // guard against loops
+constexpr double kAmplitudeFloor = 1e-6;        // |ΠR| exp(−δ s) below this: stop
+
+enum class Target { kNone, kNode, kSurface, kBottom, kSegmentEnd };
+
+}  // namespace
+
+RayTracer::RayTracer(const Medium& medium, double angle) : medium_(medium) {
+  const double zs = medium.source_depth();
+  layer_ = medium.ssp().layer_at(zs, std::sin(angle));
+  const double c = medium.ssp().at(zs, layer_).c;
+  point_.z = zs;
+  point_.c = c;
+  point_.xi = std::cos(angle) / c;
+  point_.zeta = std::sin(angle) / c;
+  point_.p = 1.0 / c;
+  segment_ = medium.segment_at(0.0);
+}
+
+RayPoint RayTracer::integrate(const RayPoint& y, double h) const {
+  // Midpoint (RK2) step of (r, z, ξ, ζ, τ, q, p); c_r = 0 (range-independent SSP).
+  const auto& ssp = medium_.ssp();
+  auto slope = [&](const RayPoint& at, double& dr, double& dz, double& dzeta, double& dtau,
+                   double& dq, double& dp) {
+    const auto v = ssp.at(at.z, layer_);
+    const double c2 = v.c * v.c;
+    const double cos_c = v.c * at.xi;
+    dr = v.c * at.xi;
+    dz = v.c * at.zeta;
+    dzeta = -v.cz / c2;
+    dtau = 1.0 / v.c;
+    dq = v.c * at.p;
+    dp = -(v.czz * cos_c * cos_c / c2) * at.q;
+  };
+  double dr, dz, dzeta, dtau, dq, dp;
+  slope(y, dr, dz, dzeta, dtau, dq, dp);
+  RayPoint mid = y;
+  mid.r += 0.5 * h * dr;
+  mid.z += 0.5 * h * dz;
+  mid.zeta += 0.5 * h * dzeta;
+  mid.q += 0.5 * h * dq;
+  mid.p += 0.5 * h * dp;
+  slope(mid, dr, dz, dzeta, dtau, dq, dp);
+  RayPoint out = y;
+  out.r += h * dr;
+  out.z += h * dz;
+  out.zeta += h * dzeta;
+  out.tau += h * dtau;
+  out.q += h * dq;
+  out.p += h * dp;
+  out.s += h;
+  return out;
+}
+
+double RayTracer::bottom_offset(const RayPoint& at) const {
+  return at.z - medium_.bottom_segments()[segment_].depth_at(at.r);
+}
+
+bool RayTracer::next() {
+  if (ended_) return false;
+  const auto& ssp = medium_.ssp();
+  const RayPoint& y = point_;
+  const double c = ssp.at(y.z, layer_).c;
+  const double tr = c * y.xi, tz = c * y.zeta;  // unit tangent
+  // The first boundary ahead along the current direction decides the step.
+  double h = medium_.max_step();
+  Target target = Target::kNone;
+  std::size_t node = 0;
+  auto consider = [&](double distance, Target t) {
+    if (distance > 0 && distance <= h) { h = distance; target = t; }
+  };
+  if (tz < 0) {
+    consider((ssp.top() - y.z) / tz, Target::kSurface);
+    if (layer_ > 0 && ssp.lands_on_nodes()) {
+      consider((ssp.node(layer_) - y.z) / tz, Target::kNode);
+      if (target == Target::kNode) node = layer_;
+    }
+  } else if (tz > 0 && ssp.lands_on_nodes() && layer_ + 1 < ssp.layer_count()) {
+    consider((ssp.node(layer_ + 1) - y.z) / tz, Target::kNode);
+    if (target == Target::kNode) node = layer_ + 1;
+  }
+  const BottomSegment& seg = medium_.bottom_segments()[segment_];
+  const double closing = tz - seg.slope * tr;  // rate at which z − bottom grows
+  if (closing > 0) consider(-bottom_offset(y) / closing, Target::kBottom);
+  if (tr > 0 && std::isfinite(seg.r1)) consider((seg.r1 - y.r) / tr, Target::kSegmentEnd);
+  if (tr < 0 && std::isfinite(seg.r0)) consider((seg.r0 - y.r) / tr, Target::kSegmentEnd);
+
+  // Signed distance to the target: curvature may carry the step past it;
+  // shrink by the secant ratio (≤ 3 tries), then land exactly (spec §4.3).
+  auto offset = [&](const RayPoint& at) {
+    switch (target) {
+      case Target::kSurface: return ssp.top() - at.z;
+      case Target::kNode: return (ssp.node(node) - at.z) * (tz > 0 ? 1.0 : -1.0);
+      case Target::kBottom: return -bottom_offset(at);
+      case Target::kSegmentEnd: return ((tr > 0 ? seg.r1 : seg.r0) - at.r) * (tr > 0 ? 1.0 : -1.0);
+      default: return kInf;
+    }
+  };
+  RayPoint out = integrate(y, h);
+  for (int tries = 0; tries < 3 && target != Target::kNone && offset(out) < 0; ++tries) {
+    const double before = offset(y), after = offset(out);
+    h *= before / (before - after);
+    out = integrate(y, h);
+  }
+  switch (target) {
+    case Target::kSurface: out.z = ssp.top(); break;
+    case Target::kNode: out.z = ssp.node(node); break;
+    case Target::kBottom: out.z = seg.depth_at(out.r); break;
+    case Target::kSegmentEnd: out.r = tr > 0 ? seg.r1 : seg.r0; break;
+    default: break;
+  }
+  // Renormalise the slowness vector to 1/c at the new point.
+  const auto v = ssp.at(out.z, layer_);
+  const double norm = std::hypot(out.xi, out.zeta) * v.c;
+  out.xi /= norm;
+  out.zeta /= norm;
+  out.c = v.c;
+  if ((out.q > 0) != (y.q > 0) && y.q != 0) ++out.caustics;
+  else if (out.q == 0) ++out.caustics;
+  point_ = out;
+  // A spline profile is not landed on at nodes: follow the layer here.
+  if (!ssp.lands_on_nodes() &&
+      (out.z < ssp.node(layer_) || out.z > ssp.node(layer_ + 1)))
+    layer_ = ssp.layer_at(out.z, out.zeta);
+
+  switch (target) {
+    case Target::kNode: land_on_node(node); break;
+    case Target::kSurface: reflect(true); break;
+    case Target::kBottom: reflect(false); break;
+    case Target::kSegmentEnd: segment_ = tr > 0 ? segment_ + 1 : segment_ - 1; break;
+    default: break;
+  }
+  const double amplitude = std::abs(point_.reflection) *
+                           std::exp(-medium_.volume_attenuation_np_per_m() * point_.s);
+  if (point_.r > medium_.box_range() || point_.r < 0 || point_.z > medium_.box_depth() ||
+      amplitude < kAmplitudeFloor || ++steps_ >= kMaxSteps)
+    ended_ = true;
+  return true;
+}
+
+void RayTracer::land_on_node(std::size_t node) {
+  // c_z jumps at a c-linear node: p jumps, q is continuous (spec §4.4).
+  auto& y = point_;
+  const auto& ssp = medium_.ssp();
+  const double cz_before = ssp.at(y.z, layer_).cz;
+  layer_ = y.zeta > 0 ? node : node - 1;
+  const double cz_after = ssp.at(y.z, layer_).cz;
+  const double cos_t = y.c * y.xi, sin_t = y.c * y.zeta;
+  y.p -= y.q * (cz_after - cz_before) * cos_t * cos_t / (y.c * y.c * sin_t);
+}
+
+void RayTracer::reflect(bool top) {
+  auto& y = point_;
+  const auto& ssp = medium_.ssp();
+  // Boundary tangent along increasing range and ν = (−τ_z, τ_r) (spec §4.4, §4.5).
+  double taur = 1.0, tauz = 0.0;
+  if (!top) {
+    const double slope = medium_.bottom_segments()[segment_].slope;
+    const double n = std::hypot(1.0, slope);
+    taur = 1.0 / n;
+    tauz = slope / n;
+  }
+  const double nur = -tauz, nuz = taur;
+  const double tr = y.c * y.xi, tz = y.c * y.zeta;
+  const double t_nu = tr * nur + tz * nuz;
+  const double grazing = std::asin(std::min(1.0, std::abs(t_nu)));
+  // p: the gradient term of a mirror medium, Δ∇c = −2 (∇c·ν) ν, incident direction.
+  const double cz = ssp.at(y.z, layer_).cz;
+  const double grad_nu = cz * nuz;
+  const double dgr = -2.0 * grad_nu * nur, dgz = -2.0 * grad_nu * nuz;
+  const double dg_n = dgr * (-tz) + dgz * tr;  // Δ∇c · n̂, n̂ = (−sin θ, cos θ)
+  const double t_tau = tr * taur + tz * tauz;
+  if (t_nu != 0) y.p -= y.q * dg_n * t_tau / (t_nu * y.c * y.c);
+  // Direction: mirror about the boundary.
+  const double nr = tr - 2.0 * t_nu * nur, nz = tz - 2.0 * t_nu * nuz;
+  y.xi = nr / y.c;
+  y.zeta = nz / y.c;
+  const Boundary& b = top ? medium_.surface() : medium_.bottom();
+  y.reflection *= reflection_coefficient(b, grazing, y.c, medium_.omega());
+  if (top) ++y.top_bounces;
+  else ++y.bottom_bounces;
+  layer_ = ssp.layer_at(y.z, y.zeta);
+}
+
+}  // namespace acomms::gram
