@@ -17,11 +17,11 @@ void BeamInfluence::add(const RayPoint& a, const RayPoint& b, const BeamLaunch& 
   if (a.r == b.r) return;
   const double r_lo = std::min(a.r, b.r), r_hi = std::max(a.r, b.r);
   const auto& columns = receivers_.columns();
-  const double length = std::hypot(b.r - a.r, b.z - a.z);
+  const double length = std::sqrt((b.r - a.r) * (b.r - a.r) + (b.z - a.z) * (b.z - a.z));
   const double tr = (b.r - a.r) / length, tz = (b.z - a.z) / length;
   const double omega = medium_.omega();
   const double delta_v = medium_.volume_attenuation_np_per_m();
-  const double cos0 = std::abs(std::cos(beam.angle_rad));
+  const double cos0 = beam.abs_cos_angle;
   const double wavelength = beam.source_speed / medium_.frequency();
   const bool coherent = mode_ == COHERENT;
   for (std::size_t j = receivers_.first_column_at_or_after(r_lo);

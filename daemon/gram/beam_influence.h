@@ -24,6 +24,7 @@ namespace acomms::gram {
 // The beam's constants, from its launch.
 struct BeamLaunch {
   double angle_rad;      // θ0
+  double abs_cos_angle;  // |cos θ0|, for the ray amplitude
   double spacing_rad;    // Δθ of the fan
   double source_speed;   // c(z_s)
   double intensity_factor = 1.0;  // semi-coherent source pattern, else 1

@@ -28,6 +28,17 @@ RayTracer::RayTracer(const Medium& medium, double angle) : medium_(medium) {
   point_.zeta = std::sin(angle) / c;
   point_.p = 1.0 / c;
   segment_ = medium.segment_at(0.0);
+  update_fade();
+}
+
+void RayTracer::update_fade() {
+  // |ΠR| exp(−δ s) < floor  ⇔  s > ln(|ΠR| / floor) / δ: one log per
+  // reflection instead of an exp per step.
+  const double magnitude = std::abs(point_.reflection);
+  const double delta = medium_.volume_attenuation_np_per_m();
+  if (magnitude < kAmplitudeFloor) faded_at_s_ = -kInf;
+  else if (delta > 0) faded_at_s_ = std::log(magnitude / kAmplitudeFloor) / delta;
+  else faded_at_s_ = kInf;
 }
 
 RayPoint RayTracer::integrate(const RayPoint& y, double h) const {
@@ -124,7 +135,7 @@ bool RayTracer::next() {
   }
   // Renormalise the slowness vector to 1/c at the new point.
   const auto v = ssp.at(out.z, layer_);
-  const double norm = std::hypot(out.xi, out.zeta) * v.c;
+  const double norm = std::sqrt(out.xi * out.xi + out.zeta * out.zeta) * v.c;
   out.xi /= norm;
   out.zeta /= norm;
   out.c = v.c;
@@ -143,10 +154,8 @@ bool RayTracer::next() {
     case Target::kSegmentEnd: segment_ = tr > 0 ? segment_ + 1 : segment_ - 1; break;
     default: break;
   }
-  const double amplitude = std::abs(point_.reflection) *
-                           std::exp(-medium_.volume_attenuation_np_per_m() * point_.s);
   if (point_.r > medium_.box_range() || point_.r < 0 || point_.z > medium_.box_depth() ||
-      amplitude < kAmplitudeFloor || ++steps_ >= kMaxSteps)
+      point_.s > faded_at_s_ || ++steps_ >= kMaxSteps)
     ended_ = true;
   return true;
 }
@@ -192,6 +201,7 @@ void RayTracer::reflect(bool top) {
   y.reflection *= reflection_coefficient(b, grazing, y.c, medium_.omega());
   if (top) ++y.top_bounces;
   else ++y.bottom_bounces;
+  update_fade();
   layer_ = ssp.layer_at(y.z, y.zeta);
 }
 

@@ -47,12 +47,14 @@ class RayTracer {
   void land_on_node(std::size_t node);
   void reflect(bool top);
   double bottom_offset(const RayPoint& at) const;  // z − bottom depth (< 0 in water)
+  void update_fade();  // recomputes faded_at_s_ after the reflection product changed
 
   const Medium& medium_;
   RayPoint point_;
   std::size_t layer_ = 0;
   std::size_t segment_ = 0;
   std::size_t steps_ = 0;
+  double faded_at_s_ = 0;  // arc length beyond which the amplitude is below the floor
   bool ended_ = false;
 };
 

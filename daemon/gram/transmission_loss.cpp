@@ -61,7 +61,8 @@ TransmissionLoss compute_transmission_loss(const Environment& env, const RunOpti
     if (coherent) chunk.pressure.assign(receivers.size(), {0.0, 0.0});
     else chunk.intensity.assign(receivers.size(), 0.0);
     for (std::uint32_t m = chunk.first_beam; m < chunk.end_beam; ++m) {
-      BeamLaunch launch{a1 + m * spacing, spacing, c_source, 1.0};
+      const double angle = a1 + m * spacing;
+      BeamLaunch launch{angle, std::abs(std::cos(angle)), spacing, c_source, 1.0};
       if (env.field_mode() == SEMI_COHERENT) {
         const double s = std::sin(k_source * zs * std::sin(launch.angle_rad));
         launch.intensity_factor = 2.0 * s * s;  // Lloyd-mirror source pattern (§4.10)
