@@ -146,8 +146,8 @@ class EnvParser {
   // A vector with BELLHOP's shorthand: N values, or `a b /` for N equally spaced.
   std::vector<double> vector(const std::string& what) {
     const double n = number_record("N" + what);
-    if (!(n >= 1 && n <= 10'000'000) || n != std::floor(n))
-      in_.fail(line_, "N" + what + " = " + std::to_string(n) + " must be an integer in [1, 10000000]");
+    if (!(n >= 1 && n <= 1'000'000) || n != std::floor(n))
+      in_.fail(line_, "N" + what + " = " + std::to_string(n) + " must be an integer in [1, 1000000]");
     const auto count = static_cast<std::size_t>(n);
     const auto r = in_.next_record(1, count, what + " values");
     line_ = r.line;

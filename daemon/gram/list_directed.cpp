@@ -73,8 +73,11 @@ ListDirectedReader::Record ListDirectedReader::next_record(std::size_t min, std:
     }
     if (record.slash) break;
   }
-  if (record.values.size() < min && !record.slash)
-    fail(record.line, what + ": " + std::to_string(min) + " value(s) expected");
+  // Stricter than Fortran: '/' may leave optional values at their defaults,
+  // never the ones a record needs.
+  if (record.values.size() < min)
+    fail(record.line, what + ": " + std::to_string(min) + " value(s) expected, " +
+                          std::to_string(record.values.size()) + " given");
   return record;
 }
 

@@ -38,7 +38,7 @@ class ListDirectedReader {
     bool slash = false;  // ended by '/'
     std::size_t line = 0;
   };
-  // Reads between `min` and `max` values (fewer than `min` only if '/').
+  // Reads between `min` and `max` values; fewer than `min` is an error.
   // `what` names the record in errors.
   Record next_record(std::size_t min, std::size_t max, const std::string& what);
   bool at_end() const;
