@@ -16,6 +16,25 @@ constexpr double kAmplitudeFloor = 1e-6;        // |ΠR| exp(−δ s) below this
 
 enum class Target { kNone, kNode, kSurface, kBottom, kSegmentEnd };
 
+// Smallest positive arc length h with gap − rate h − ½ curvature h² = 0:
+// when a quantity `gap` away, approached at `rate` per metre of ray with
+// `curvature`, is reached; +∞ if never (it turns away first).
+double arc_to_offset(double gap, double rate, double curvature) {
+  const double a = 0.5 * curvature;
+  if (std::abs(a) * gap < 1e-12 * std::max(rate * rate, 1e-300)) {
+    return rate > 0 ? gap / rate : kInf;
+  }
+  const double disc = rate * rate + 4.0 * a * gap;
+  if (disc < 0) return kInf;
+  const double root = std::sqrt(disc);
+  // Roots of a h² + rate h − gap = 0, in a cancellation-free form.
+  const double q = -0.5 * (rate + std::copysign(root, rate));
+  double best = kInf;
+  for (double h : {q / a, q != 0 ? -gap / q : kInf})
+    if (h > 1e-9 && h < best) best = h;
+  return best;
+}
+
 }  // namespace
 
 RayTracer::RayTracer(const Medium& medium, double angle) : medium_(medium) {
@@ -41,37 +60,32 @@ void RayTracer::update_fade() {
   else faded_at_s_ = kInf;
 }
 
-RayPoint RayTracer::integrate(const RayPoint& y, double h) const {
-  // Midpoint (RK2) step of (r, z, ξ, ζ, τ, q, p); c_r = 0 (range-independent SSP).
-  const auto& ssp = medium_.ssp();
-  auto slope = [&](const RayPoint& at, double& dr, double& dz, double& dzeta, double& dtau,
-                   double& dq, double& dp) {
-    const auto v = ssp.at(at.z, layer_);
+RayPoint RayTracer::integrate(const RayPoint& y, const SoundSpeedProfile::Value& at_y, double h) const {
+  // Midpoint (RK2) step of (r, z, ξ, ζ, τ, q, p); c_r = 0 (range-independent
+  // SSP). `at_y` is c and its derivatives at y, which every try shares.
+  struct Slope {
+    double dr, dz, dzeta, dtau, dq, dp;
+  };
+  auto slope = [](const RayPoint& at, const SoundSpeedProfile::Value& v) {
     const double c2 = v.c * v.c;
     const double cos_c = v.c * at.xi;
-    dr = v.c * at.xi;
-    dz = v.c * at.zeta;
-    dzeta = -v.cz / c2;
-    dtau = 1.0 / v.c;
-    dq = v.c * at.p;
-    dp = -(v.czz * cos_c * cos_c / c2) * at.q;
+    return Slope{v.c * at.xi, v.c * at.zeta, -v.cz / c2, 1.0 / v.c, v.c * at.p,
+                 -(v.czz * cos_c * cos_c / c2) * at.q};
   };
-  double dr, dz, dzeta, dtau, dq, dp;
-  slope(y, dr, dz, dzeta, dtau, dq, dp);
+  const Slope k1 = slope(y, at_y);
   RayPoint mid = y;
-  mid.r += 0.5 * h * dr;
-  mid.z += 0.5 * h * dz;
-  mid.zeta += 0.5 * h * dzeta;
-  mid.q += 0.5 * h * dq;
-  mid.p += 0.5 * h * dp;
-  slope(mid, dr, dz, dzeta, dtau, dq, dp);
+  mid.z += 0.5 * h * k1.dz;
+  mid.zeta += 0.5 * h * k1.dzeta;
+  mid.q += 0.5 * h * k1.dq;
+  mid.p += 0.5 * h * k1.dp;
+  const Slope k2 = slope(mid, medium_.ssp().at(mid.z, layer_));
   RayPoint out = y;
-  out.r += h * dr;
-  out.z += h * dz;
-  out.zeta += h * dzeta;
-  out.tau += h * dtau;
-  out.q += h * dq;
-  out.p += h * dp;
+  out.r += h * k2.dr;
+  out.z += h * k2.dz;
+  out.zeta += h * k2.dzeta;
+  out.tau += h * k2.dtau;
+  out.q += h * k2.dq;
+  out.p += h * k2.dp;
   out.s += h;
   return out;
 }
@@ -84,48 +98,55 @@ bool RayTracer::next() {
   if (ended_) return false;
   const auto& ssp = medium_.ssp();
   const RayPoint& y = point_;
-  const double c = ssp.at(y.z, layer_).c;
+  const auto at_y = ssp.at(y.z, layer_);
+  const double c = at_y.c;
   const double tr = c * y.xi, tz = c * y.zeta;  // unit tangent
-  // The first boundary ahead along the current direction decides the step.
+  // The first boundary ahead along the (curving) ray decides the step. Depth
+  // crossings are predicted with the ray's curvature d²z/ds² = −(c_z/c) cos²θ,
+  // so a ray that turns before a node is not sent to it.
+  const double kappa = -(at_y.cz / c) * tr * tr;
   double h = medium_.max_step();
   Target target = Target::kNone;
   std::size_t node = 0;
   auto consider = [&](double distance, Target t) {
-    if (distance > 0 && distance <= h) { h = distance; target = t; }
+    if (distance > 1e-9 && distance <= h) { h = distance; target = t; }
   };
-  if (tz < 0) {
-    consider((ssp.top() - y.z) / tz, Target::kSurface);
-    if (layer_ > 0 && ssp.lands_on_nodes()) {
-      consider((ssp.node(layer_) - y.z) / tz, Target::kNode);
-      if (target == Target::kNode) node = layer_;
-    }
-  } else if (tz > 0 && ssp.lands_on_nodes() && layer_ + 1 < ssp.layer_count()) {
-    consider((ssp.node(layer_ + 1) - y.z) / tz, Target::kNode);
-    if (target == Target::kNode) node = layer_ + 1;
+  consider(arc_to_offset(y.z - ssp.top(), -tz, -kappa), Target::kSurface);
+  if (ssp.lands_on_nodes()) {
+    const double up = layer_ > 0 ? arc_to_offset(y.z - ssp.node(layer_), -tz, -kappa) : kInf;
+    const double down = layer_ + 1 < ssp.layer_count()
+                             ? arc_to_offset(ssp.node(layer_ + 1) - y.z, tz, kappa) : kInf;
+    node = up < down ? layer_ : layer_ + 1;
+    consider(std::min(up, down), Target::kNode);
   }
   const BottomSegment& seg = medium_.bottom_segments()[segment_];
-  const double closing = tz - seg.slope * tr;  // rate at which z − bottom grows
-  if (closing > 0) consider(-bottom_offset(y) / closing, Target::kBottom);
+  consider(arc_to_offset(-bottom_offset(y), tz - seg.slope * tr, kappa), Target::kBottom);
   if (tr > 0 && std::isfinite(seg.r1)) consider((seg.r1 - y.r) / tr, Target::kSegmentEnd);
   if (tr < 0 && std::isfinite(seg.r0)) consider((seg.r0 - y.r) / tr, Target::kSegmentEnd);
 
-  // Signed distance to the target: curvature may carry the step past it;
-  // shrink by the secant ratio (≤ 3 tries), then land exactly (spec §4.3).
+  // Signed distance still to go to the target (negative: overshot). An
+  // overshoot is corrected by the secant ratio (≤ 3 tries, spec §4.3); a ray
+  // that falls short (it turned) is not moved onto the target.
+  const double approach = target == Target::kNode || target == Target::kSurface
+                              ? (tz + kappa * h > 0 ? 1.0 : -1.0)
+                              : 1.0;
   auto offset = [&](const RayPoint& at) {
     switch (target) {
-      case Target::kSurface: return ssp.top() - at.z;
-      case Target::kNode: return (ssp.node(node) - at.z) * (tz > 0 ? 1.0 : -1.0);
+      case Target::kSurface: return (ssp.top() - at.z) * approach;
+      case Target::kNode: return (ssp.node(node) - at.z) * approach;
       case Target::kBottom: return -bottom_offset(at);
       case Target::kSegmentEnd: return ((tr > 0 ? seg.r1 : seg.r0) - at.r) * (tr > 0 ? 1.0 : -1.0);
       default: return kInf;
     }
   };
-  RayPoint out = integrate(y, h);
-  for (int tries = 0; tries < 3 && target != Target::kNone && offset(out) < 0; ++tries) {
+  constexpr double kLandingTolerance = 1e-4;  // m
+  RayPoint out = integrate(y, at_y, h);
+  for (int tries = 0; tries < 3 && target != Target::kNone && offset(out) < -kLandingTolerance; ++tries) {
     const double before = offset(y), after = offset(out);
     h *= before / (before - after);
-    out = integrate(y, h);
+    out = integrate(y, at_y, h);
   }
+  if (target != Target::kNone && std::abs(offset(out)) > kLandingTolerance) target = Target::kNone;
   switch (target) {
     case Target::kSurface: out.z = ssp.top(); break;
     case Target::kNode: out.z = ssp.node(node); break;
@@ -133,6 +154,7 @@ bool RayTracer::next() {
     case Target::kSegmentEnd: out.r = tr > 0 ? seg.r1 : seg.r0; break;
     default: break;
   }
+  if (out.z < ssp.top()) out.z = ssp.top();  // never above the surface
   // Renormalise the slowness vector to 1/c at the new point.
   const auto v = ssp.at(out.z, layer_);
   const double norm = std::sqrt(out.xi * out.xi + out.zeta * out.zeta) * v.c;
@@ -168,6 +190,7 @@ void RayTracer::land_on_node(std::size_t node) {
   layer_ = y.zeta > 0 ? node : node - 1;
   const double cz_after = ssp.at(y.z, layer_).cz;
   const double cos_t = y.c * y.xi, sin_t = y.c * y.zeta;
+  if (std::abs(sin_t) < 1e-12) return;  // turning exactly on the node: no crossing
   y.p -= y.q * (cz_after - cz_before) * cos_t * cos_t / (y.c * y.c * sin_t);
 }
 

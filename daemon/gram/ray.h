@@ -42,8 +42,7 @@ class RayTracer {
   bool next();
 
  private:
-  struct Derivatives;
-  RayPoint integrate(const RayPoint& from, double h) const;
+  RayPoint integrate(const RayPoint& from, const SoundSpeedProfile::Value& at_from, double h) const;
   void land_on_node(std::size_t node);
   void reflect(bool top);
   double bottom_offset(const RayPoint& at) const;  // z − bottom depth (< 0 in water)
