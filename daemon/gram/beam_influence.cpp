@@ -44,10 +44,35 @@ void BeamInfluence::add(const RayPoint& a, const RayPoint& b, const BeamLaunch& 
     const double attenuation = std::exp(-delta_v * s);
     const int caustics = a.caustics + (((q > 0) != (a.q > 0) && a.q != 0) ? 1 : 0);
     const auto& depths = col.depth_m;
+    const double pq = p / q;
+    auto phase_at = [&](double dz) {
+      const double n = dz * tr;
+      return omega * (tau + dz * tz / c + 0.5 * pq * n * n) - 0.5 * std::numbers::pi * caustics;
+    };
+    // On evenly spaced depths the phase is quadratic in the index: advance
+    // the phasor by complex rotations instead of a sincos per receiver.
+    const double spacing = col.uniform_spacing;
+    std::complex<double> phasor, rotation, step_rotation;
+    bool first = true;
+    const std::complex<double> coefficient = amplitude * attenuation * a.reflection;
     auto it = std::lower_bound(depths.begin(), depths.end(), z_ray - reach_z);
     for (auto k = static_cast<std::size_t>(it - depths.begin());
          k < depths.size() && depths[k] <= z_ray + reach_z; ++k) {
       const double dz = depths[k] - z_ray;
+      if (coherent) {
+        if (first || spacing == 0) {
+          phasor = std::polar(1.0, phase_at(dz));
+          if (spacing > 0) {
+            const double curvature = pq * tr * tr;
+            rotation = std::polar(1.0, omega * (spacing * tz / c + curvature * (dz * spacing + 0.5 * spacing * spacing)));
+            step_rotation = std::polar(1.0, omega * curvature * spacing * spacing);
+          }
+          first = false;
+        } else {
+          phasor *= rotation;
+          rotation *= step_rotation;
+        }
+      }
       const double n = dz * tr;
       double w;
       if (shape_ == HAT) {
@@ -59,9 +84,7 @@ void BeamInfluence::add(const RayPoint& a, const RayPoint& b, const BeamLaunch& 
       }
       const std::size_t out = col.index[k];
       if (coherent) {
-        const double tau_rcv = tau + dz * tz / c + 0.5 * (p / q) * n * n;
-        const double phase = omega * tau_rcv - 0.5 * std::numbers::pi * caustics;
-        pressure[out] += (amplitude * w * attenuation) * a.reflection * std::polar(1.0, phase);
+        pressure[out] += w * coefficient * phasor;
       } else {
         const double refl = std::norm(a.reflection);
         intensity[out] += amplitude * amplitude * refl * attenuation * attenuation * w *

@@ -111,7 +111,9 @@ bool RayTracer::next() {
   auto consider = [&](double distance, Target t) {
     if (distance > 1e-9 && distance <= h) { h = distance; target = t; }
   };
-  consider(arc_to_offset(y.z - ssp.top(), -tz, -kappa), Target::kSurface);
+  // A depth target out of reach within h, whatever the curvature, needs no root.
+  const double reach = h * (1.0 + 0.5 * std::abs(kappa) * h);
+  if (y.z - ssp.top() <= reach) consider(arc_to_offset(y.z - ssp.top(), -tz, -kappa), Target::kSurface);
   if (ssp.lands_on_nodes()) {
     const double up = layer_ > 0 ? arc_to_offset(y.z - ssp.node(layer_), -tz, -kappa) : kInf;
     const double down = layer_ + 1 < ssp.layer_count()
@@ -120,7 +122,9 @@ bool RayTracer::next() {
     consider(std::min(up, down), Target::kNode);
   }
   const BottomSegment& seg = medium_.bottom_segments()[segment_];
-  consider(arc_to_offset(-bottom_offset(y), tz - seg.slope * tr, kappa), Target::kBottom);
+  const double bottom_gap = -bottom_offset(y);
+  if (bottom_gap <= reach * (1.0 + std::abs(seg.slope)))
+    consider(arc_to_offset(bottom_gap, tz - seg.slope * tr, kappa), Target::kBottom);
   if (tr > 0 && std::isfinite(seg.r1)) consider((seg.r1 - y.r) / tr, Target::kSegmentEnd);
   if (tr < 0 && std::isfinite(seg.r0)) consider((seg.r0 - y.r) / tr, Target::kSegmentEnd);
 

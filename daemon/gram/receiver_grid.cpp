@@ -2,6 +2,7 @@
 #include "gram/receiver_grid.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numeric>
 
@@ -27,6 +28,14 @@ ReceiverGrid::ReceiverGrid(const Environment& env) {
     for (const auto& [z, index] : entries) {
       column.depth_m.push_back(z);
       column.index.push_back(index);
+    }
+    const auto& z = column.depth_m;
+    if (z.size() >= 3) {
+      const double step = (z.back() - z.front()) / static_cast<double>(z.size() - 1);
+      bool even = step > 0;
+      for (std::size_t i = 1; even && i < z.size(); ++i)
+        even = std::abs(z[i] - z[i - 1] - step) <= 1e-9 * step;
+      if (even) column.uniform_spacing = step;
     }
     columns_.push_back(std::move(column));
   }

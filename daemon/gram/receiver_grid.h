@@ -20,6 +20,7 @@ struct ReceiverColumn {
   double range_m;
   std::vector<double> depth_m;      // ascending
   std::vector<std::size_t> index;   // output index of each depth
+  double uniform_spacing = 0;       // the depth step if evenly spaced, else 0
 };
 
 class ReceiverGrid {
