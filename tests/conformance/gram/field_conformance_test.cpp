@@ -81,6 +81,18 @@ TEST(GramField, PekerisLosslessAgainstImagesAndRangeAveragedExactField) { expect
 TEST(GramField, PekerisLossyAgainstImagesAndRangeAveragedExactField) { expect_pekeris("pekeris_lossy_500hz"); }
 TEST(GramField, Pekeris2kHzAgainstImagesAndRangeAveragedExactField) { expect_pekeris("pekeris_2000hz"); }
 
+// Geometric Gaussian beams (spec §4.8.2): the same ray sums, a smoother
+// weight with a one-wavelength floor. No README band; held to the hat
+// beams' bands where a Gaussian's leak past a boundary does not matter.
+TEST(GramField, GaussianBeamsInFreeSpaceAndIncoherentLloydMirror) {
+  Environment free = load("free_space.env");
+  free.set_beam_shape(GAUSSIAN);
+  EXPECT_LE(run(free, "free_space.csv", "tl_db").pointwise.max, 0.05);
+  Environment lloyd = load("lloyd_mirror_inc.env");
+  lloyd.set_beam_shape(GAUSSIAN);
+  EXPECT_LE(run(lloyd, "lloyd_mirror.csv", "tl_incoherent_db").pointwise.median, 0.01);
+}
+
 TEST(GramField, IdealRigidWaveguideRangeAveragedAgainstTheModeSum) {
   const Comparison c = run(load("ideal_rigid_500hz.env"), "ideal_rigid_500hz.csv", "tl_exact_db");
   EXPECT_LE(c.averaged.median, 0.6);
