@@ -11,6 +11,7 @@
 #include "gram/beam_fan.h"
 #include "gram/bellhop_import.h"
 #include "gram/ctd_cast.h"
+#include "gram/profile_merge.h"
 #include "gram/transmission_loss.h"
 #include "gram_plot.h"
 #include "rpc_error.h"  // UsageError
@@ -21,6 +22,7 @@ namespace {
 struct GramOptions {
   std::string ctd, env, png, at;
   double bin_m = 1.0;
+  double thin_mps = 0;
   bool mackenzie = false;
   unsigned threads = 0;
 };
@@ -46,7 +48,9 @@ void run_ssp(const GramOptions& o) {
   options.equation = o.mackenzie ? gram::SoundSpeedEquation::kMackenzie : gram::SoundSpeedEquation::kUnesco;
   std::cout << "depth_m,speed_mps\n";
   std::cout.setf(std::ios::fixed);
-  for (const auto& p : gram::sound_speed_from_ctd(cast, options))
+  auto profile = gram::sound_speed_from_ctd(cast, options);
+  if (o.thin_mps > 0) profile = gram::thin_profile(profile, o.thin_mps);
+  for (const auto& p : profile)
     std::cout << std::setprecision(3) << p.depth_m() << "," << std::setprecision(4) << p.speed_mps() << "\n";
 }
 
@@ -121,6 +125,10 @@ CLI::App* add_gram_command(CLI::App& app) {
              "depth_m or p_dbar, t90_degc, s_psu or conductivity_ms_per_cm, lat_deg");
   ssp->add_option("--ctd", options.ctd, "The cast (CSV)")->required()->type_name("FILE.csv");
   ssp->add_option("--bin", options.bin_m, "Depth bin (m) for averaging")->check(CLI::PositiveNumber)->capture_default_str();
+  ssp->add_option("--thin", options.thin_mps,
+                  "Drop points that linear interpolation reproduces within this many m/s (0: keep all)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   ssp->add_flag("--mackenzie", options.mackenzie, "Mackenzie 1981 instead of UNESCO (Chen-Millero)");
   ssp->callback([] { run_ssp(options); });
 

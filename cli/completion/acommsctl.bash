@@ -180,9 +180,9 @@ _acommsctl() {
     "gram ssp")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --ctd|--bin|--timeout) COMPREPLY=(); return ;;
+        --ctd|--bin|--thin|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --ctd --bin --mackenzie --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --ctd --bin --thin --mackenzie --socket -s --timeout --json" -- "$cur")) ;;
     "gram tl")
       case "$prev" in
         --png) COMPREPLY=($(compgen -f -- "$cur")); return ;;

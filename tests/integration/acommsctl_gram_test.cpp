@@ -30,6 +30,17 @@ TEST(AcommsctlGram, SspPrintsTheCastsProfile) {
   EXPECT_EQ(out[1].rfind("0.000,", 0), 0u) << out[1];
 }
 
+TEST(AcommsctlGram, SspThinningKeepsFewerPointsWithTheSameEnds) {
+  const std::string cast = std::string(ACOMMS_SHARED_DIR) + "/conformance/gram/ctd_cast_to_ssp.csv";
+  const auto all = run(ACOMMSCTL_BINARY, {"gram", "ssp", "--ctd", cast}, "gram");
+  const auto thin = run(ACOMMSCTL_BINARY, {"gram", "ssp", "--ctd", cast, "--thin", "0.5"}, "gram");
+  ASSERT_EQ(thin.exit_code, 0) << thin.err;
+  const auto a = lines(all.out), t = lines(thin.out);
+  EXPECT_LT(t.size(), a.size());
+  EXPECT_EQ(t.at(1), a.at(1));
+  EXPECT_EQ(t.back(), a.back());
+}
+
 TEST(AcommsctlGram, TlPrintsOneCsvRowPerReceiverAndReportsTheAutomaticBeamCount) {
   const auto r = run(ACOMMSCTL_BINARY, {"gram", "tl", "--env", kEnvs + "lloyd_mirror.env"}, "gram");
   ASSERT_EQ(r.exit_code, 0) << r.err;
