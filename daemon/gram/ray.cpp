@@ -47,6 +47,7 @@ RayTracer::RayTracer(const Medium& medium, double angle) : medium_(medium) {
   point_.zeta = std::sin(angle) / c;
   point_.p = 1.0 / c;
   segment_ = medium.segment_at(0.0);
+  here_ = medium.ssp().at(zs, layer_);
   update_fade();
 }
 
@@ -98,7 +99,7 @@ bool RayTracer::next() {
   if (ended_) return false;
   const auto& ssp = medium_.ssp();
   const RayPoint& y = point_;
-  const auto at_y = ssp.at(y.z, layer_);
+  const SoundSpeedProfile::Value at_y = here_;
   const double c = at_y.c;
   const double tr = c * y.xi, tz = c * y.zeta;  // unit tangent
   // The first boundary ahead along the (curving) ray decides the step. Depth
@@ -115,8 +116,11 @@ bool RayTracer::next() {
   const double reach = h * (1.0 + 0.5 * std::abs(kappa) * h);
   if (y.z - ssp.top() <= reach) consider(arc_to_offset(y.z - ssp.top(), -tz, -kappa), Target::kSurface);
   if (ssp.lands_on_nodes()) {
-    const double up = layer_ > 0 ? arc_to_offset(y.z - ssp.node(layer_), -tz, -kappa) : kInf;
-    const double down = layer_ + 1 < ssp.layer_count()
+    // A node behind the ray matters only if the ray can turn within the step.
+    const bool can_rise = tz < 0 || tz + kappa * h < 0;
+    const bool can_sink = tz > 0 || tz + kappa * h > 0;
+    const double up = layer_ > 0 && can_rise ? arc_to_offset(y.z - ssp.node(layer_), -tz, -kappa) : kInf;
+    const double down = layer_ + 1 < ssp.layer_count() && can_sink
                              ? arc_to_offset(ssp.node(layer_ + 1) - y.z, tz, kappa) : kInf;
     node = up < down ? layer_ : layer_ + 1;
     consider(std::min(up, down), Target::kNode);
@@ -160,6 +164,7 @@ bool RayTracer::next() {
   }
   if (out.z < ssp.top()) out.z = ssp.top();  // never above the surface
   // Renormalise the slowness vector to 1/c at the new point.
+  const std::size_t layer_before_events = layer_;
   const auto v = ssp.at(out.z, layer_);
   const double norm = std::sqrt(out.xi * out.xi + out.zeta * out.zeta) * v.c;
   out.xi /= norm;
@@ -180,6 +185,9 @@ bool RayTracer::next() {
     case Target::kSegmentEnd: segment_ = tr > 0 ? segment_ + 1 : segment_ - 1; break;
     default: break;
   }
+  // c and its derivatives at the new point, for the next step (the layer,
+  // hence c_z, may have changed at a node or a reflection).
+  here_ = layer_ == layer_before_events ? v : ssp.at(point_.z, layer_);
   if (point_.r > medium_.box_range() || point_.r < 0 || point_.z > medium_.box_depth() ||
       point_.s > faded_at_s_ || ++steps_ >= kMaxSteps)
     ended_ = true;

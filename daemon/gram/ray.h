@@ -51,6 +51,7 @@ class RayTracer {
   const Medium& medium_;
   RayPoint point_;
   std::size_t layer_ = 0;
+  SoundSpeedProfile::Value here_{};  // c, c_z, c_zz at point_ in layer_
   std::size_t segment_ = 0;
   std::size_t steps_ = 0;
   double faded_at_s_ = 0;  // arc length beyond which the amplitude is below the floor
