@@ -59,6 +59,39 @@ TEST(GramTransmissionLoss, AFlatBathymetryGivesTheFlatBottomResult) {
   }
 }
 
+TEST(GramTransmissionLoss, ARangeDependentBottomWithASeamountGivesFiniteLossInTheWater) {
+  // Up a slope to 50 m at 4 km, down again: rays steepen, turn back in range
+  // and cross segment ends in both directions; every run must end.
+  Environment env = small_pekeris();
+  env.clear_sound_speed();
+  for (auto [z, c] : {std::pair{0.0, 1520.0}, {30.0, 1510.0}, {60.0, 1495.0}, {200.0, 1500.0}}) {
+    auto* p = env.add_sound_speed();
+    p->set_depth_m(z);
+    p->set_speed_mps(c);
+  }
+  for (auto [r, z] : {std::pair{0.0, 200.0}, {2000.0, 120.0}, {3000.0, 50.0}, {3500.0, 180.0}}) {
+    auto* p = env.add_bathymetry();
+    p->set_range_m(r);
+    p->set_depth_m(z);
+  }
+  env.set_box_depth_m(201);
+  env.set_beam_count(400);
+  for (FieldMode mode : {COHERENT, INCOHERENT}) {
+    env.set_field_mode(mode);
+    const auto tl = compute_transmission_loss(env);
+    const std::size_t nr = tl.range_m.size();
+    for (std::size_t iz = 0; iz < tl.depth_m.size(); ++iz)
+      for (std::size_t ir = 1; ir < nr; ++ir) {
+        const double v = tl.tl_db[iz * nr + ir];
+        EXPECT_FALSE(std::isnan(v));
+        // In the water up to the slope (bottom ≥ 120 m until 2 km), the field is there.
+        if (tl.range_m[ir] <= 2000 && tl.depth_m[iz] < 100) {
+          EXPECT_TRUE(std::isfinite(v)) << iz << "," << ir;
+        }
+      }
+  }
+}
+
 TEST(GramTransmissionLoss, TheSourceAxisHasNoValueAndDoesNotCrash) {
   const auto tl = compute_transmission_loss(small_pekeris());
   const std::size_t nr = tl.range_m.size();
