@@ -138,6 +138,7 @@ class EnvParser {
       if (!text) in_.fail(r.line, "BOTOPT asks for a bathymetry file (.bty) that cannot be read");
       for (const auto& p : import_bellhop_bty(*text, in_.file_name() + " (.bty)"))
         *result_.environment.add_bathymetry() = p;
+      bathymetry_from_file_ = true;
     } else if (bty != ' ') {
       refuse("BOTOPT(2)", bty, "only '*' or '~' (read .bty) are");
     }
@@ -215,6 +216,12 @@ class EnvParser {
     env.set_step_m(box[0]);
     env.set_box_depth_m(box[1]);
     env.set_box_range_m(1000.0 * box[2]);
+    // The bottom is extended flat beyond the file's points (spec §1.4).
+    const auto& bty = env.bathymetry();
+    if (bathymetry_from_file_ && (bty[0].range_m() > 0 || bty[bty.size() - 1].range_m() < env.box_range_m()))
+      result_.warnings.push_back("the bathymetry covers " + std::to_string(bty[0].range_m()) + " to " +
+                                 std::to_string(bty[bty.size() - 1].range_m()) +
+                                 " m only: its end depths are extended flat to 0 and RBOX");
   }
 
   ListDirectedReader in_;
@@ -222,6 +229,7 @@ class EnvParser {
   ImportedEnvironment result_;
   std::string top_;
   char units_ = 'W';
+  bool bathymetry_from_file_ = false;
   std::size_t line_ = 0;
 };
 

@@ -74,6 +74,18 @@ TEST(GramBellhopImport, ReadsABathymetryFileThroughTheSideFileLoader) {
   EXPECT_DOUBLE_EQ(env.bathymetry(1).depth_m(), 90.0);
 }
 
+TEST(GramBellhopImport, WarnsWhenTheBathymetryDoesNotReachTheBox) {
+  auto side_to = [](const std::string& last_km) {
+    return SideFileLoader([last_km](const std::string&) {
+      return std::optional<std::string>("'L'\n2\n0 100\n" + last_km + " 100\n");
+    });
+  };
+  const auto short_bty = import(env_text("'CVW'", "'A*' 0.0"), side_to("10"));  // RBOX is 10.1 km
+  ASSERT_EQ(short_bty.warnings.size(), 1u);
+  EXPECT_NE(short_bty.warnings[0].find("extended flat"), std::string::npos) << short_bty.warnings[0];
+  EXPECT_TRUE(import(env_text("'CVW'", "'A*' 0.0"), side_to("11")).warnings.empty());
+}
+
 TEST(GramBellhopImport, RefusesCurvilinearBathymetryByName) {
   SideFileLoader side = [](const std::string&) { return std::optional<std::string>("'C'\n2\n0 100\n10 100\n"); };
   const std::string message = refusal(env_text("'CVW'", "'A*' 0.0"), side);
