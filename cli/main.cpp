@@ -13,6 +13,7 @@
 #include "defs_command.h"
 #include "events_command.h"
 #include "global_options.h"
+#include "gram_command.h"
 #include "link_command.h"
 #include "queue_command.h"
 #include "rpc_error.h"
@@ -37,6 +38,7 @@ void add_commands(CLI::App& app, const acomms::cli::GlobalOptions& options) {
   add_events_command(app, options);
   add_dccl_command(app, options);
   add_sim_command(app, options);
+  add_gram_command(app);
   add_completion_command(app);
 }
 
