@@ -20,7 +20,7 @@ _acommsctl() {
   for ((i = 1; i < COMP_CWORD; i++)); do
     word="${COMP_WORDS[i]}"
     case "${path:+$path }$word" in
-      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link cycle"|"events"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"completion") path="${path:+$path }$word" ;;
+      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link cycle"|"events"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"completion") path="${path:+$path }$word" ;;
     esac
   done
   case "$path" in
@@ -32,7 +32,7 @@ _acommsctl() {
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "status defs send sub queue link events dccl sim completion --help -h --socket -s --timeout --json --ca --cert --key --insecure --version" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "status defs send sub queue link events dccl sim gram completion --help -h --socket -s --timeout --json --ca --cert --key --insecure --version" -- "$cur")) ;;
     "status")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -240,6 +240,43 @@ _acommsctl() {
         --ids|--start|--slot|--coolness|--p-collide|--expire-cycles|--horizon-cycles|--blank-rule|--seed|--sizes|--trials|--start-window-cycles|--timeout) COMPREPLY=(); return ;;
       esac
       COMPREPLY=($(compgen -W "--help -h --ids --start --slot --coolness --p-collide --expire-cycles --horizon-cycles --blank-rule --seed --monte-carlo --sizes --trials --start-window-cycles --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "gram")
+      case "$prev" in
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "ssp tl arrivals --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "gram ssp")
+      case "$prev" in
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ctd|--bin|--thin|--timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "--help -h --ctd --bin --thin --mackenzie --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "gram tl")
+      case "$prev" in
+        --png) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --env|--threads|--timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "--help -h --env --png --threads --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "gram arrivals")
+      case "$prev" in
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --env|--at|--timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "--help -h --env --at --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "completion")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
