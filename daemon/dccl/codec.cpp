@@ -110,6 +110,7 @@ struct Codec::Impl {
   std::unordered_map<std::string, Plan*> by_name;
   std::unordered_map<const gp::Descriptor*, Plan*> by_descriptor;
   std::unordered_map<int, Plan*> by_id;
+  std::map<std::string, std::string> refused;  // type -> reason (TypeRefused)
 
   bool strict = false;
   std::function<double()> clock = system_clock_seconds;
@@ -160,6 +161,10 @@ struct Codec::Impl {
     MessageCompiler compiler(&registry, &reader, &from, {mo.codec_version, mo.codec_group});
     compiler.compile_top(type, &plan->head, &plan->body);
     errs->insert(errs->end(), compiler.errors().begin(), compiler.errors().end());
+    if (!compiler.refusals().empty()) {
+      if (&from == &pool) refused[name] = join(compiler.refusals());
+      return nullptr;  // this type only: not an error of its file
+    }
 
     TypeInfo& info = plan->info;
     info.name = name;
@@ -336,6 +341,13 @@ std::vector<const TypeInfo*> Codec::load(const std::string& proto_file,
   return result;
 }
 
+const std::map<std::string, std::string>& Codec::refused_types() const { return impl_->refused; }
+
+std::string Codec::refusal(std::string_view full_name) const {
+  auto it = impl_->refused.find(std::string(full_name));
+  return it == impl_->refused.end() ? std::string() : it->second;
+}
+
 const TypeInfo* Codec::find_type(std::string_view full_name) const {
   auto it = impl_->by_name.find(std::string(full_name));
   return it == impl_->by_name.end() ? nullptr : &it->second->info;
@@ -355,6 +367,9 @@ std::vector<const TypeInfo*> Codec::types() const {
 std::unique_ptr<gp::Message> Codec::new_message(std::string_view full_name) const {
   auto it = impl_->by_name.find(std::string(full_name));
   if (it == impl_->by_name.end()) {
+    if (std::string why = refusal(full_name); !why.empty()) {
+      throw encode_error("unknown type " + std::string(full_name) + " (refused at load: " + why + ")");
+    }
     throw encode_error("DCCL type " + std::string(full_name) + " is not loaded");
   }
   return std::unique_ptr<gp::Message>(it->second->prototype->New());
