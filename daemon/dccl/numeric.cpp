@@ -126,13 +126,21 @@ uint64_t NumericCore<T>::to_wire(T x, const EncodeContext& ctx, const std::strin
     // on x86-64: only signed fields whose range is wider than the type's
     // positive half wrap (to negative, then sign-extended).
     const i128 diff = static_cast<T>(w - qmin_i_);
+    uint64_t u;
     if (int_path_) {
-      const i128 q = diff / step_;
-      return masked(static_cast<uint64_t>(static_cast<int64_t>(q)) + offset);
+      u = masked(static_cast<uint64_t>(static_cast<int64_t>(diff / step_)) + offset);
+    } else {
+      double d = static_cast<double>(diff);
+      d = use_scale_ ? std::floor(d * scale_ + 0.5) : std::floor(d / res_ + 0.5);
+      u = masked(x86_double_to_u64(d) + offset);
     }
-    double d = static_cast<double>(diff);
-    d = use_scale_ ? std::floor(d * scale_ + 0.5) : std::floor(d / res_ + 0.5);
-    return masked(x86_double_to_u64(d) + offset);
+    // The wrap can turn an optional value into "not set" (int32 max in
+    // [-2^31, 2^31 - 1]): strict mode refuses to lose it.
+    if (ctx.strict && optional_ && u == 0) {
+      throw encode_error(path + ": value " + format_number(static_cast<double>(x)) +
+                         " would arrive as not set (value - min overflows the field's type in the reference DCCL)");
+    }
+    return u;
   } else {
     // Quantised in double; a float field keeps the result as a float.
     const double w = static_cast<double>(static_cast<T>(quantize(static_cast<double>(x))));
