@@ -113,7 +113,8 @@ class FixedRepeatedField final : public FieldCodec {
         path_(ctx.path),
         element_(std::move(element)),
         max_(ctx.options.max_repeat),
-        elem_(element_->size()) {
+        elem_(element_->size()),
+        messages_(ctx.field->cpp_type() == gp::FieldDescriptor::CPPTYPE_MESSAGE) {
     if (elem_.max == 0) ctx.fail("repeated field of zero-size elements is not supported");
   }
 
@@ -133,10 +134,13 @@ class FixedRepeatedField final : public FieldCodec {
   }
   void decode(BitReader& in, gp::Message* msg, const DecodeContext& ctx) const override {
     in.require(sat_mul(max_, elem_.min));
+    if (!messages_) {
+      for (uint32_t i = 0; i < max_; ++i) element_->decode(in, msg, ctx);
+      return;
+    }
     const gp::Reflection* r = msg->GetReflection();
     const int before = r->FieldSize(*msg, field_);
     for (uint32_t i = 0; i < max_; ++i) element_->decode(in, msg, ctx);
-    if (field_->cpp_type() != gp::FieldDescriptor::CPPTYPE_MESSAGE) return;
     // Sub-messages: the reference keeps every element decoded and then
     // drops one from the END for each that came out empty, so an empty
     // element before a non-empty one survives and the non-empty one goes
@@ -154,6 +158,7 @@ class FixedRepeatedField final : public FieldCodec {
   std::unique_ptr<ElementCodec> element_;
   uint32_t max_;
   SizeBits elem_;
+  bool messages_;  // elements are sub-messages
 };
 
 // dccl.presence on an optional field: 1 presence bit, then required encoding.

@@ -67,7 +67,9 @@ class TimeElement final : public ElementCodec {
     double now = ctx.now();
     if (!std::isfinite(now)) now = 0;
     const double k = std::floor((now - *v) / window_s_ + 0.5);
-    const double seconds = std::floor((*v + k * window_s_) * decode_scale_ + 0.5) / decode_scale_;
+    const double t = *v + k * window_s_;
+    const double seconds =
+        decode_scale_ == 1 ? std::floor(t + 0.5) : std::floor(t * decode_scale_ + 0.5) / decode_scale_;
     if constexpr (std::is_floating_point_v<T>) {
       Access<T>::put(msg, field_, seconds);
     } else {
