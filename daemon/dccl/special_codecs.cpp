@@ -39,7 +39,11 @@ class TimeElement final : public ElementCodec {
     if (o.num_days == 0) ctx.fail("dccl.time needs num_days >= 1");
     window_s_ = o.num_days * kSecondsPerDay;
     // Precision as a power of ten of seconds.
-    const int32_t precision = std::is_floating_point_v<T> ? o.precision : o.precision + 6;
+    const int64_t p64 = std::is_floating_point_v<T> ? int64_t{o.precision} : int64_t{o.precision} + 6;
+    if (o.has_precision && (p64 < -300 || p64 > 300)) {
+      ctx.fail("precision " + std::to_string(o.precision) + " is out of range");
+    }
+    const int32_t precision = static_cast<int32_t>(p64);
     NumericBounds b;
     b.max = window_s_;
     b.has_precision = o.has_precision;
