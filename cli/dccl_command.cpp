@@ -17,6 +17,7 @@
 #include "dccl/plugin_codecs.h"
 #include "global_options.h"
 #include "dccl/hex.h"
+#include "dccl/vector_line.h"
 
 namespace acomms::cli {
 namespace {
@@ -48,13 +49,10 @@ std::string trim(const std::string& text) {
 // " => hex" (the conformance vectors' format) is ignored, so a vectors file
 // can be piped straight in.
 std::string encode_line(const dccl::Codec& codec, const std::string& line) {
-  if (line.empty() || line[0] != '|') throw std::invalid_argument("expected |type.Name| <text format>");
-  size_t close = line.find('|', 1);
-  if (close == std::string::npos) throw std::invalid_argument("missing closing '|' after the type name");
-  std::string type = line.substr(1, close - 1);
-  std::string text = line.substr(close + 1);
-  size_t arrow = text.rfind(" => ");
-  if (arrow != std::string::npos) text = text.substr(0, arrow);
+  // " => " inside a string literal is part of the string.
+  dccl::VectorLine parsed = dccl::parse_vector_line(line);
+  const std::string& type = parsed.type;
+  const std::string& text = parsed.text;
   std::unique_ptr<google::protobuf::Message> message = codec.new_message(type);
 
   class Collector : public google::protobuf::io::ErrorCollector {

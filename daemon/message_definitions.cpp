@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -38,8 +39,14 @@ std::unique_ptr<dccl::Codec> make_codec(const v1::DcclConfig& config) {
   std::vector<std::string> include_dirs(config.include_dirs().begin(), config.include_dirs().end());
   for (const std::string& file : config.proto_files()) {
     try {
+      const std::map<std::string, std::string> refused_before = codec->refused_types();
       auto types = codec->load(file, include_dirs);
       spdlog::info("dccl: {}: {} message type{}", file, types.size(), types.size() == 1 ? "" : "s");
+      // Refused types do not stop the daemon (the file's other types load),
+      // but nobody can send them: say so at start.
+      for (const auto& [type, why] : codec->refused_types()) {
+        if (!refused_before.count(type)) spdlog::warn("dccl: {}: type {} refused: {}", file, type, why);
+      }
     } catch (const dccl::Error& e) {
       throw std::runtime_error("dccl definitions " + file + ":\n" + e.what());
     }

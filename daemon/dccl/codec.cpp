@@ -26,6 +26,14 @@ std::vector<const TypeInfo*> Codec::load(const std::string& proto_file, const st
   return schema_->load(proto_file, include_dirs);
 }
 
+const std::map<std::string, std::string>& Codec::refused_types() const { return schema_->refused_types(); }
+
+std::string Codec::refusal(std::string_view full_name) const {
+  const auto& refused = schema_->refused_types();
+  auto it = refused.find(std::string(full_name));
+  return it == refused.end() ? std::string() : it->second;
+}
+
 const TypeInfo* Codec::find_type(std::string_view full_name) const {
   const TypePlan* plan = schema_->find(full_name);
   return plan ? &plan->info : nullptr;
@@ -40,7 +48,12 @@ std::vector<const TypeInfo*> Codec::types() const { return schema_->types(); }
 
 std::unique_ptr<gp::Message> Codec::new_message(std::string_view full_name) const {
   const TypePlan* plan = schema_->find(full_name);
-  if (plan == nullptr) throw encode_error("DCCL type " + std::string(full_name) + " is not loaded");
+  if (plan == nullptr) {
+    if (std::string why = refusal(full_name); !why.empty()) {
+      throw encode_error("unknown type " + std::string(full_name) + " (refused at load: " + why + ")");
+    }
+    throw encode_error("DCCL type " + std::string(full_name) + " is not loaded");
+  }
   return std::unique_ptr<gp::Message>(plan->prototype->New());
 }
 

@@ -26,6 +26,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -72,8 +73,16 @@ class Codec {
   // version loads. Loading an unchanged file again is harmless; a file (or
   // an import) that changed since it was loaded is refused, because loaded
   // types cannot be replaced.
+  // One exception: a type that the reference DCCL refuses, or that uses a
+  // feature acommsd cannot encode like it (TypeRefused), is left out alone,
+  // with its reason in refused_types(); the file's other types load.
   std::vector<const TypeInfo*> load(const std::string& proto_file,
                                     const std::vector<std::string>& include_dirs = {});
+
+  // Types left out at load, full name -> reason ("" from refusal() when the
+  // type was not refused).
+  const std::map<std::string, std::string>& refused_types() const;
+  std::string refusal(std::string_view full_name) const;
 
   // Loaded types; nullptr if unknown.
   const TypeInfo* find_type(std::string_view full_name) const;

@@ -1,10 +1,11 @@
-// The _default codec's element codecs (numbers, bool, enum, string/bytes,
-// embedded messages) and the wrappers that turn elements into field codecs.
+// The _default codec's element codecs: numbers, bool, enum, string/bytes,
+// embedded messages (field_wrappers.cpp turns them into field codecs).
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/message.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "dccl/element_codec.h"
@@ -19,7 +20,6 @@ namespace gp = google::protobuf;
 namespace {
 
 using util::saturating_add;
-using util::saturating_mul;
 
 NumericBounds numeric_bounds(const FieldContext& ctx) {
   const FieldOptions& o = ctx.options;
@@ -217,7 +217,9 @@ class StringElement final : public ElementCodec {
       in.read_bytes(max_len_, &value);
     } else {
       uint64_t n = in.read(len_bits_);
-      bool empty_is_unset = !required_ && (rule_ == StringRule::kV2 || rule_ == StringRule::kV3);
+      // v2/v3: length 0 is "not set", required fields (and presence-coded
+      // ones) included: the reference decodes them so.
+      bool empty_is_unset = rule_ == StringRule::kV2 || rule_ == StringRule::kV3;
       if (n == 0 && empty_is_unset) return;
       in.read_bytes(n, &value);
     }
@@ -242,13 +244,12 @@ class StringElement final : public ElementCodec {
 // ---------------------------------------------------------------- embedded message
 
 // v3/v4 optional: a presence bit, then the body. v2 always writes the body
-// (an unset message as its default instance); a decoded v2 optional message
-// with nothing set is dropped again.
+// (an unset message as its default instance); a decoded v2 message with
+// nothing set is dropped again.
 class MessageElement final : public ElementCodec {
  public:
   MessageElement(const FieldContext& ctx, bool required)
       : field_(ctx.field),
-        required_(required),
         v2_(ctx.codec_version == 2),
         presence_(!required && ctx.codec_version >= 3),
         body_(ctx.compiler->compile_embedded(ctx.field->message_type(), ctx.path)) {}
@@ -277,168 +278,17 @@ class MessageElement final : public ElementCodec {
     const gp::Reflection* r = msg->GetReflection();
     gp::Message* sub = field_->is_repeated() ? r->AddMessage(msg, field_) : r->MutableMessage(msg, field_);
     body_->decode(in, sub, ctx);
-    if (v2_ && !required_ && sub->ByteSizeLong() == 0) {
-      if (field_->is_repeated()) {
-        r->RemoveLast(msg, field_);
-      } else {
-        r->ClearField(msg, field_);
-      }
-    }
+    // v2: a sub-message with nothing set decodes as absent, required ones
+    // included (as the reference does); the repeated wrapper drops empty
+    // elements its own way.
+    if (v2_ && !field_->is_repeated() && sub->ByteSizeLong() == 0) r->ClearField(msg, field_);
   }
 
  private:
   const gp::FieldDescriptor* field_;
-  bool required_;
   bool v2_;
   bool presence_;
   std::shared_ptr<MessageBody> body_;
-};
-
-// ---------------------------------------------------------------- field wrappers
-
-class SingularField final : public FieldCodec {
- public:
-  SingularField(const FieldContext& ctx, std::unique_ptr<ElementCodec> element, bool required)
-      : field_(ctx.field), path_(ctx.path), element_(std::move(element)), required_(required) {}
-
-  SizeBits size() const override { return element_->size(); }
-  double resolution() const override { return element_->resolution(); }
-  void encode(const gp::Message& msg, BitWriter& out, const EncodeContext& ctx) const override {
-    if (required_) {
-      if (ctx.strict && field_->is_required() && !msg.GetReflection()->HasField(msg, field_)) {
-        throw encode_error(path_ + ": required field is not set");
-      }
-      element_->encode(msg, -1, out, ctx);
-    } else if (msg.GetReflection()->HasField(msg, field_)) {
-      element_->encode(msg, -1, out, ctx);
-    } else {
-      element_->encode_unset(msg, out);
-    }
-  }
-  void decode(BitReader& in, gp::Message* msg, const DecodeContext& ctx) const override {
-    element_->decode(in, msg, ctx);
-  }
-
- private:
-  const gp::FieldDescriptor* field_;
-  std::string path_;
-  std::unique_ptr<ElementCodec> element_;
-  bool required_;
-};
-
-std::string too_many(const std::string& path, int n, uint32_t max) {
-  return path + ": " + std::to_string(n) + " elements exceed max_repeat " + std::to_string(max);
-}
-
-// v3/v4: ceil_log2(max_repeat - min_repeat + 1) bits of count - min_repeat,
-// then the elements; missing elements up to min_repeat are zeros.
-class RepeatedField final : public FieldCodec {
- public:
-  RepeatedField(const FieldContext& ctx, std::unique_ptr<ElementCodec> element)
-      : field_(ctx.field),
-        path_(ctx.path),
-        element_(std::move(element)),
-        min_(ctx.options.min_repeat),
-        max_(ctx.options.max_repeat),
-        prefix_bits_(ceil_log2(uint64_t{max_} - min_ + 1)),
-        elem_(element_->size()) {
-    if (elem_.max == 0) ctx.fail("repeated field of zero-size elements is not supported");
-  }
-
-  SizeBits size() const override {
-    return {saturating_add(prefix_bits_, saturating_mul(min_, elem_.min)), saturating_add(prefix_bits_, saturating_mul(max_, elem_.max))};
-  }
-  double resolution() const override { return element_->resolution(); }
-
-  void encode(const gp::Message& msg, BitWriter& out, const EncodeContext& ctx) const override {
-    int n = msg.GetReflection()->FieldSize(msg, field_);
-    if (static_cast<uint32_t>(n) > max_) {
-      if (ctx.strict) throw encode_error(too_many(path_, n, max_));
-      n = static_cast<int>(max_);
-    }
-    uint32_t count = std::max(static_cast<uint32_t>(n), min_);
-    out.write(count - min_, prefix_bits_);
-    for (int i = 0; i < n; ++i) element_->encode(msg, i, out, ctx);
-    for (uint32_t i = static_cast<uint32_t>(n); i < count; ++i) out.write_zeros(elem_.min);
-  }
-
-  void decode(BitReader& in, gp::Message* msg, const DecodeContext& ctx) const override {
-    uint64_t count = in.read(prefix_bits_) + min_;
-    in.require(saturating_mul(count, elem_.min));  // never loop over more elements than bytes
-    for (uint64_t i = 0; i < count; ++i) element_->decode(in, msg, ctx);
-  }
-
- private:
-  const gp::FieldDescriptor* field_;
-  std::string path_;
-  std::unique_ptr<ElementCodec> element_;
-  uint32_t min_, max_;
-  unsigned prefix_bits_;
-  SizeBits elem_;
-};
-
-// v2: always max_repeat elements in optional encoding.
-class FixedRepeatedField final : public FieldCodec {
- public:
-  FixedRepeatedField(const FieldContext& ctx, std::unique_ptr<ElementCodec> element)
-      : field_(ctx.field),
-        path_(ctx.path),
-        element_(std::move(element)),
-        max_(ctx.options.max_repeat),
-        elem_(element_->size()) {
-    if (elem_.max == 0) ctx.fail("repeated field of zero-size elements is not supported");
-  }
-
-  SizeBits size() const override { return {saturating_mul(max_, elem_.min), saturating_mul(max_, elem_.max)}; }
-  double resolution() const override { return element_->resolution(); }
-
-  void encode(const gp::Message& msg, BitWriter& out, const EncodeContext& ctx) const override {
-    int n = msg.GetReflection()->FieldSize(msg, field_);
-    if (static_cast<uint32_t>(n) > max_ && ctx.strict) throw encode_error(too_many(path_, n, max_));
-    for (uint32_t i = 0; i < max_; ++i) {
-      if (i < static_cast<uint32_t>(n)) {
-        element_->encode(msg, static_cast<int>(i), out, ctx);
-      } else {
-        element_->encode_unset(msg, out);
-      }
-    }
-  }
-  void decode(BitReader& in, gp::Message* msg, const DecodeContext& ctx) const override {
-    in.require(saturating_mul(max_, elem_.min));
-    for (uint32_t i = 0; i < max_; ++i) element_->decode(in, msg, ctx);
-  }
-
- private:
-  const gp::FieldDescriptor* field_;
-  std::string path_;
-  std::unique_ptr<ElementCodec> element_;
-  uint32_t max_;
-  SizeBits elem_;
-};
-
-// dccl.presence on an optional field: 1 presence bit, then required encoding.
-class PresenceField final : public FieldCodec {
- public:
-  PresenceField(const FieldContext& ctx, std::unique_ptr<ElementCodec> element)
-      : field_(ctx.field), element_(std::move(element)) {}
-
-  SizeBits size() const override { return {1, saturating_add(element_->size().max, 1)}; }
-  double resolution() const override { return element_->resolution(); }
-  void encode(const gp::Message& msg, BitWriter& out, const EncodeContext& ctx) const override {
-    if (msg.GetReflection()->HasField(msg, field_)) {
-      out.write(1, 1);
-      element_->encode(msg, -1, out, ctx);
-    } else {
-      out.write(0, 1);
-    }
-  }
-  void decode(BitReader& in, gp::Message* msg, const DecodeContext& ctx) const override {
-    if (in.read(1) != 0) element_->decode(in, msg, ctx);
-  }
-
- private:
-  const gp::FieldDescriptor* field_;
-  std::unique_ptr<ElementCodec> element_;
 };
 
 }  // namespace
@@ -484,21 +334,6 @@ std::unique_ptr<ElementCodec> make_var_bytes_element(const FieldContext& ctx, bo
     ctx.fail("dccl.var_bytes needs a string or bytes field");
   }
   return std::make_unique<StringElement>(ctx, required, StringRule::kV4);
-}
-
-std::unique_ptr<FieldCodec> make_field(const FieldContext& ctx, const ElementBuilder& build) {
-  if (ctx.field->is_repeated()) {
-    if (ctx.codec_version >= 3) return std::make_unique<RepeatedField>(ctx, build(ctx, true));
-    return std::make_unique<FixedRepeatedField>(ctx, build(ctx, false));
-  }
-  return std::make_unique<SingularField>(ctx, build(ctx, ctx.required), ctx.required);
-}
-
-std::unique_ptr<FieldCodec> make_presence_field(const FieldContext& ctx, const ElementBuilder& build) {
-  if (!ctx.field->is_repeated() && !ctx.required) {
-    return std::make_unique<PresenceField>(ctx, build(ctx, true));
-  }
-  return make_field(ctx, build);
 }
 
 }  // namespace acomms::dccl

@@ -40,6 +40,11 @@ std::unique_ptr<ElementCodec> make_var_bytes_element(const FieldContext& ctx, bo
 // Wraps elements into a field codec following the version's rules for
 // singular and repeated fields.
 std::unique_ptr<FieldCodec> make_field(const FieldContext& ctx, const ElementBuilder& build);
+// The same with the repeated layout of codec version `layout_version`: an
+// explicit older codec (dccl.default2) in a newer message builds its
+// elements by its own version's rules but keeps the message's repeated
+// layout, as the reference does.
+std::unique_ptr<FieldCodec> make_field(const FieldContext& ctx, const ElementBuilder& build, int layout_version);
 // dccl.presence: optional singular fields get one presence bit and then the
 // required encoding; everything else as make_field.
 std::unique_ptr<FieldCodec> make_presence_field(const FieldContext& ctx, const ElementBuilder& build);

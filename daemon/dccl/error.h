@@ -31,6 +31,16 @@ class Error : public std::runtime_error {
   Kind kind_;
 };
 
+// A type acommsd refuses on its own, not its file: one the reference DCCL
+// refuses to load (a fielded vehicle could never send it), or one that uses
+// a feature acommsd cannot encode the way the reference does. Field codecs
+// throw it at load time with the reason; the type is left out (see
+// Codec::refused_types()) and the rest of its file loads.
+class TypeRefused : public Error {
+ public:
+  explicit TypeRefused(const std::string& what) : Error(Kind::kSchema, what) {}
+};
+
 inline Error schema_error(const std::string& what) { return Error(Error::Kind::kSchema, what); }
 inline Error encode_error(const std::string& what) { return Error(Error::Kind::kEncode, what); }
 inline Error decode_error(const std::string& what) { return Error(Error::Kind::kDecode, what); }

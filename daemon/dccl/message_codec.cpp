@@ -155,6 +155,9 @@ void MessageCompiler::compile_fields(const gp::Descriptor* type, const std::stri
       fields_[info_index].codec = codec_name;
       fields_[info_index].bits = size;
       fields_[info_index].resolution = codec->resolution();
+    } catch (const TypeRefused& e) {
+      refusals_.push_back(e.what());
+      continue;
     } catch (const Error& e) {
       errors_.push_back(e.what());
       continue;
@@ -169,6 +172,12 @@ std::unique_ptr<FieldCodec> MessageCompiler::compile_field(const gp::FieldDescri
                                                            const FieldOptions& fo, const gp::Message* raw,
                                                            std::string* codec_name) {
   auto fail = [&](const std::string& rule) { throw schema_error(path + ": " + rule); };
+  if (fo.has_dynamic_conditions) {
+    // The reference evaluates them per message (bounds and presence that
+    // depend on other fields); encoding without them would put other bytes
+    // on the wire than a fielded vehicle expects.
+    throw TypeRefused(path + ": (dccl.field).dynamic_conditions is not supported by acommsd");
+  }
   if (fo.has_precision && fo.has_resolution) fail("precision and resolution are both set");
   if (field->is_repeated()) {
     if (!fo.has_max_repeat) fail("repeated field needs (dccl.field).max_repeat");

@@ -72,6 +72,8 @@ class MessageCompiler {
 
   // Errors found so far, one "path: rule" per entry.
   const std::vector<std::string>& errors() const { return errors_; }
+  // Why the type is refused (TypeRefused from a field codec), one per field.
+  const std::vector<std::string>& refusals() const { return refusals_; }
   std::vector<FieldInfo>& fields() { return fields_; }
 
  private:
@@ -88,6 +90,7 @@ class MessageCompiler {
   CompileSettings settings_;
   std::vector<const google::protobuf::Descriptor*> stack_;  // to reject recursive types
   std::vector<std::string> errors_;
+  std::vector<std::string> refusals_;
   std::vector<FieldInfo> fields_;
 };
 

@@ -47,6 +47,20 @@ unsigned ceil_log2(uint64_t n) {
   return b;
 }
 
+uint64_t x86_double_to_u64(double d) {
+  constexpr double k63 = 9223372036854775808.0;
+  constexpr uint64_t kIndefinite = uint64_t{1} << 63;
+  // cvttsd2si: truncation to int64, or the "indefinite" 2^63 when that
+  // does not exist (NaN, out of range).
+  auto cvtt = [](double v) -> uint64_t {
+    if (!(v >= -k63 && v < k63)) return kIndefinite;
+    return static_cast<uint64_t>(static_cast<int64_t>(v));
+  };
+  // Values from 2^63 up: subtract 2^63, convert, flip the top bit back.
+  if (d >= k63) return cvtt(d - k63) ^ kIndefinite;
+  return cvtt(d);
+}
+
 std::string format_number(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.15g", v);
@@ -84,22 +98,13 @@ NumericCore<T>::NumericCore(const NumericBounds& b, bool optional, const std::st
       if (std::fabs(min_) > FLT_MAX || std::fabs(max_) > FLT_MAX) fail("min/max out of range for float");
       if ((use_scale_ ? scale_ : res_) > FLT_MAX) fail("resolution out of range for float");
     }
-    qmin_ = quantize(static_cast<T>(min_));
+    qmin_ = quantize(min_);
   }
 }
 
 template <typename T>
-T NumericCore<T>::quantize(T x) const {
-  if constexpr (std::is_integral_v<T>) {
-    return x;
-  } else {
-    if (use_scale_) {
-      const T s = static_cast<T>(scale_);
-      return std::floor(x * s + T(0.5)) / s;
-    }
-    const T r = static_cast<T>(res_);
-    return std::floor(x / r + T(0.5)) * r;
-  }
+double NumericCore<T>::quantize(double x) const {
+  return use_scale_ ? std::floor(x * scale_ + 0.5) / scale_ : std::floor(x / res_ + 0.5) * res_;
 }
 
 template <typename T>
@@ -111,35 +116,38 @@ uint64_t NumericCore<T>::to_wire(T x, const EncodeContext& ctx, const std::strin
     }
     return 0;
   };
-  auto clamp_u = [&](double u) -> uint64_t {
-    if (!(u > 0)) return 0;
-    if (u >= kTwo64) return max_u_;
-    uint64_t v = static_cast<uint64_t>(u);
-    return v > max_u_ ? max_u_ : v;
-  };
   const uint64_t offset = optional_ ? 1 : 0;
 
   if constexpr (std::is_integral_v<T>) {
     i128 v = x;
     i128 w = int_path_ ? quantize_int(v, step_) : v;
     if (w < min_i_ || w > max_i_) return out_of_range();
+    // value - min in the field's own type, wrapping as the reference's does
+    // on x86-64: only signed fields whose range is wider than the type's
+    // positive half wrap (to negative, then sign-extended).
+    const i128 diff = static_cast<T>(w - qmin_i_);
+    uint64_t u;
     if (int_path_) {
-      i128 q = (w - qmin_i_) / step_;
-      if (q < 0) q = 0;
-      i128 u = q + offset;
-      return u > static_cast<i128>(max_u_) ? max_u_ : static_cast<uint64_t>(u);
+      u = masked(static_cast<uint64_t>(static_cast<int64_t>(diff / step_)) + offset);
+    } else {
+      double d = static_cast<double>(diff);
+      d = use_scale_ ? std::floor(d * scale_ + 0.5) : std::floor(d / res_ + 0.5);
+      u = masked(x86_double_to_u64(d) + offset);
     }
-    double diff = static_cast<double>(w - qmin_i_);
-    double d = use_scale_ ? std::floor(diff * scale_ + 0.5) : std::floor(diff / res_ + 0.5);
-    return clamp_u(d + static_cast<double>(offset));
+    // The wrap can turn an optional value into "not set" (int32 max in
+    // [-2^31, 2^31 - 1]): strict mode refuses to lose it.
+    if (ctx.strict && optional_ && u == 0) {
+      throw encode_error(path + ": value " + format_number(static_cast<double>(x)) +
+                         " would arrive as not set (value - min overflows the field's type in the reference DCCL)");
+    }
+    return u;
   } else {
-    T w = quantize(x);
-    if (!std::isfinite(w) || static_cast<double>(w) < min_ || static_cast<double>(w) > max_) {
-      return out_of_range();
-    }
-    T d = use_scale_ ? std::floor((w - qmin_) * static_cast<T>(scale_) + T(0.5))
-                     : std::floor((w - qmin_) / static_cast<T>(res_) + T(0.5));
-    return clamp_u(static_cast<double>(d) + static_cast<double>(offset));
+    // Quantised in double; a float field keeps the result as a float.
+    const double w = static_cast<double>(static_cast<T>(quantize(static_cast<double>(x))));
+    if (w < min_ || w > max_) return out_of_range();  // NaN passes, as in the reference
+    if (ctx.strict && std::isnan(w)) return out_of_range();
+    const double d = use_scale_ ? std::floor((w - qmin_) * scale_ + 0.5) : std::floor((w - qmin_) / res_ + 0.5);
+    return masked(x86_double_to_u64(d) + offset);
   }
 }
 
@@ -158,13 +166,16 @@ std::optional<T> NumericCore<T>::from_wire(uint64_t u) const {
                (use_scale_ ? static_cast<double>(u) / scale_ : static_cast<double>(u) * res_);
     return clamp_to<T>(std::floor(d + 0.5));
   } else {
-    double d = static_cast<double>(qmin_) +
-               (use_scale_ ? static_cast<double>(u) / scale_ : static_cast<double>(u) * res_);
+    double d = qmin_ + (use_scale_ ? static_cast<double>(u) / scale_ : static_cast<double>(u) * res_);
+    // With min 0, u / scale (or u * res) is already on the grid: quantising
+    // gives it back exactly (|d * scale - u| is a few ulps of u, far below
+    // 0.5, for u < 2^51), so the hot decode path skips it.
+    if (qmin_ != 0 || u >= (uint64_t{1} << 51)) d = quantize(d);
     if constexpr (std::is_same_v<T, float>) {
       if (d > FLT_MAX) d = FLT_MAX;
       if (d < -FLT_MAX) d = -FLT_MAX;
     }
-    return quantize(static_cast<T>(d));
+    return static_cast<T>(d);
   }
 }
 

@@ -6,12 +6,23 @@
 //   encode: w = quantize(x); out of [min, max] -> 0 (or an error when strict)
 //           else u = round((w - quantize(min)) / res), +1 when optional
 //
-// The arithmetic deliberately follows the reference encoder: it is done in
-// the field's own type (float fields quantise in float, so a float equal to
-// max can fall out of range), round(x) = floor(x + 0.5) on the binary value,
-// and integers with res > 1 round with C++'s truncating % (positives half
-// up, negatives toward zero). Everything that depends only on the options is
-// computed once in the constructor.
+// The arithmetic deliberately follows the reference encoder, which a fielded
+// vehicle runs (dccl-wire.md, Numbers):
+//  - floating values quantise in double; a float field stores the result
+//    back as float and compares that float, promoted, with min and max (so a
+//    float equal to max can fall out of range, and 0.015f at precision 2 is
+//    0.01: 0.015f is 0.01499999966);
+//  - round(x) = floor(x + 0.5) on the binary value; integers with res > 1
+//    round with C++'s truncating % (positives half up, negatives toward
+//    zero);
+//  - where the reference's result comes from undefined behaviour, this
+//    reproduces what it does on x86-64 Linux: a NaN passes the range check
+//    and its wire value is the x86 "integer indefinite" 2^63 (+1 when
+//    optional) cut to the field's bits, and an integer field's value - min
+//    wraps in the field's own type (int32 ranges wider than 2^31 give
+//    sign-extended wire bits). Strict mode refuses NaN instead.
+// Everything that depends only on the options is computed once in the
+// constructor.
 #pragma once
 
 #include <cstdint>
@@ -47,7 +58,8 @@ class NumericCore {
   std::optional<T> from_wire(uint64_t u) const;
 
  private:
-  T quantize(T x) const;
+  double quantize(double x) const;
+  uint64_t masked(uint64_t u) const { return u & max_u_; }
 
   double min_ = 0, max_ = 0, res_ = 1;
   bool optional_ = false;
@@ -56,13 +68,18 @@ class NumericCore {
   bool int_path_ = false;   // integer field with integral res >= 1
   __int128 step_ = 1;       // res as an integer (int_path_)
   __int128 min_i_ = 0, max_i_ = 0, qmin_i_ = 0;  // integer fields
-  T qmin_{};                                     // floating fields
+  double qmin_ = 0;                              // floating fields
   unsigned bits_ = 0;
   uint64_t max_u_ = 0;
 };
 
 // Smallest b with 2^b >= n (0 for n <= 1).
 unsigned ceil_log2(uint64_t n);
+
+// double -> uint64_t as g++ compiles it on x86-64 (cvttsd2si): defined for
+// every input, and what the reference's undefined conversions give there
+// (NaN and values out of range -> 2^63, negatives -> two's complement).
+uint64_t x86_double_to_u64(double d);
 
 // Shortest round-trip-ish text of a number for error messages ("0.07", "101").
 std::string format_number(double v);

@@ -99,6 +99,9 @@ FieldOptions OptionReader::field_options(const gp::FieldDescriptor* field, const
   o.packed_enum = get<bool>(m, "packed_enum");
   o.resolution = get<double>(m, "resolution", &o.has_resolution);
   o.min_repeat = get<uint32_t>(m, "min_repeat");
+  if (const gp::FieldDescriptor* dc = m.GetDescriptor()->FindFieldByName("dynamic_conditions")) {
+    o.has_dynamic_conditions = m.GetReflection()->HasField(m, dc);
+  }
   return o;
 }
 

@@ -55,6 +55,7 @@ struct FieldOptions {
   bool has_resolution = false;
   double resolution = 1;
   uint32_t min_repeat = 0;
+  bool has_dynamic_conditions = false;  // (dccl.field).dynamic_conditions given
 };
 
 // Reads options of descriptors that belong to `pool`, which must contain

@@ -53,7 +53,7 @@ CodecRegistry CodecRegistry::with_builtins() {
     auto factory = [version](const FieldContext& ctx) {
       FieldContext c = ctx;
       c.codec_version = version;
-      return make_field(c, make_default_element);
+      return make_field(c, make_default_element, ctx.codec_version);
     };
     r.add("_default" + std::to_string(version), factory);
     r.add("dccl.default" + std::to_string(version), factory);

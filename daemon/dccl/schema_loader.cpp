@@ -95,6 +95,7 @@ struct SchemaLoader::Pools {
   std::unordered_map<std::string, TypePlan*> by_name;
   std::unordered_map<const gp::Descriptor*, TypePlan*> by_descriptor;
   std::unordered_map<int, TypePlan*> by_id;
+  std::map<std::string, std::string> refused;  // type -> reason (TypeRefused)
 
   void add_include_dir(const std::string& dir) {
     for (const std::string& d : include_dirs) {
@@ -159,6 +160,10 @@ struct SchemaLoader::Pools {
     MessageCompiler compiler(&registry, &reader, &from, {mo.codec_version, mo.codec_group});
     compiler.compile_top(type, &plan->head, &plan->body);
     errs->insert(errs->end(), compiler.errors().begin(), compiler.errors().end());
+    if (!compiler.refusals().empty()) {
+      if (&from == &pool) refused[name] = join(compiler.refusals());
+      return nullptr;  // this type only: not an error of its file
+    }
 
     TypeInfo& info = plan->info;
     info.name = name;
@@ -331,6 +336,8 @@ const TypePlan* SchemaLoader::find_id(int id) const {
   auto it = pools_->by_id.find(id);
   return it == pools_->by_id.end() ? nullptr : it->second;
 }
+
+const std::map<std::string, std::string>& SchemaLoader::refused_types() const { return pools_->refused; }
 
 std::vector<const TypeInfo*> SchemaLoader::types() const {
   std::vector<const TypeInfo*> out;

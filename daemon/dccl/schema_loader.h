@@ -18,6 +18,7 @@
 // done; load() and add_include_dir() must not run concurrently with anything.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -55,6 +56,8 @@ class SchemaLoader {
   const TypePlan* find(const google::protobuf::Descriptor* type) const;
   const TypePlan* find_id(int id) const;
   std::vector<const TypeInfo*> types() const;
+  // See Codec::refused_types().
+  const std::map<std::string, std::string>& refused_types() const;
 
  private:
   struct Pools;

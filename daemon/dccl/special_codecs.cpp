@@ -17,10 +17,20 @@ namespace {
 
 constexpr double kSecondsPerDay = 86400;
 
-// dccl.time: the time of day (within a num_days window), double seconds or
-// (u)int64 microseconds since the epoch. Resolution defaults to 1 s; for
-// microsecond fields precision/resolution are in microseconds. The decoder
-// puts the value in the window that is within half a window of its clock.
+// dccl.time: the time of day within a num_days window, on a double field
+// (seconds since the epoch) or an (u)int64 one (microseconds). As in the
+// reference, which a fielded vehicle runs:
+//  - a microsecond value is converted to double seconds first (so values
+//    above 2^53 us lose precision, and half a step rounds as the double
+//    does), and then coded exactly like a double time;
+//  - the time of day is fmod(seconds, window): a negative time gives a
+//    negative time of day, out of range (all zeros; strict mode refuses it);
+//  - precision on a microsecond field counts in microseconds (precision -3:
+//    steps of 1 ms) but resolution counts in seconds (resolution 0.001:
+//    steps of 1 ms), default 1 s;
+//  - the decoder puts the time of day in the window within half a window of
+//    its clock, then rounds the result to the precision (whole seconds when
+//    only a resolution is given: 1.5 s at resolution 0.5 decodes as 2 s).
 template <typename T>
 class TimeElement final : public ElementCodec {
  public:
@@ -28,58 +38,49 @@ class TimeElement final : public ElementCodec {
     const FieldOptions& o = ctx.options;
     if (o.num_days == 0) ctx.fail("dccl.time needs num_days >= 1");
     window_s_ = o.num_days * kSecondsPerDay;
-    NumericBounds b;
-    b.has_precision = o.has_precision;
-    b.precision = o.precision;
-    if constexpr (std::is_floating_point_v<T>) {
-      b.max = window_s_;
-      b.resolution = o.has_precision ? std::pow(10.0, -o.precision) : o.resolution;
-    } else {
-      if (o.num_days > 100000) ctx.fail("dccl.time num_days is too large for a microsecond field");
-      window_us_ = static_cast<__int128>(o.num_days) * 86400 * 1000000;
-      b.max = static_cast<double>(window_us_);
-      b.resolution = o.has_precision    ? std::pow(10.0, -o.precision)
-                     : o.has_resolution ? o.resolution
-                                        : 1e6;
+    // Precision as a power of ten of seconds.
+    const int64_t p64 = std::is_floating_point_v<T> ? int64_t{o.precision} : int64_t{o.precision} + 6;
+    if (o.has_precision && (p64 < -300 || p64 > 300)) {
+      ctx.fail("precision " + std::to_string(o.precision) + " is out of range");
     }
-    core_ = NumericCore<T>(b, !required, path_);
+    const int32_t precision = static_cast<int32_t>(p64);
+    NumericBounds b;
+    b.max = window_s_;
+    b.has_precision = o.has_precision;
+    b.precision = precision;
+    b.resolution = o.has_precision ? std::pow(10.0, -precision) : o.resolution;
+    core_ = NumericCore<double>(b, !required, path_);
+    decode_scale_ = std::pow(10.0, o.has_precision ? precision : 0);
   }
 
   SizeBits size() const override { return {core_.bits(), core_.bits()}; }
-  double resolution() const override { return core_.resolution(); }
+  double resolution() const override {
+    return std::is_floating_point_v<T> ? core_.resolution() : core_.resolution() * 1e6;
+  }
 
   void encode(const gp::Message& msg, int index, BitWriter& out, const EncodeContext& ctx) const override {
-    T x = Access<T>::get(msg, field_, index);
-    T wrapped;
-    if constexpr (std::is_floating_point_v<T>) {
-      wrapped = x - std::floor(x / window_s_) * window_s_;
-    } else {
-      __int128 v = x;
-      wrapped = static_cast<T>(((v % window_us_) + window_us_) % window_us_);
-    }
-    out.write(core_.to_wire(wrapped, ctx, path_), core_.bits());
+    const T x = Access<T>::get(msg, field_, index);
+    const double seconds = std::is_floating_point_v<T> ? static_cast<double>(x) : static_cast<double>(x) / 1e6;
+    out.write(core_.to_wire(std::fmod(seconds, window_s_), ctx, path_), core_.bits());
   }
   void encode_unset(const gp::Message&, BitWriter& out) const override { out.write(0, core_.bits()); }
 
   void decode(BitReader& in, gp::Message* msg, const DecodeContext& ctx) const override {
-    std::optional<T> v = core_.from_wire(in.read(core_.bits()));
+    std::optional<double> v = core_.from_wire(in.read(core_.bits()));
     if (!v) return;
     double now = ctx.now();
     if (!std::isfinite(now)) now = 0;
+    const double k = std::floor((now - *v) / window_s_ + 0.5);
+    const double t = *v + k * window_s_;
+    const double seconds =
+        decode_scale_ == 1 ? std::floor(t + 0.5) : std::floor(t * decode_scale_ + 0.5) / decode_scale_;
     if constexpr (std::is_floating_point_v<T>) {
-      double k = std::floor((now - *v) / window_s_ + 0.5);
-      Access<T>::put(msg, field_, static_cast<T>(*v + k * window_s_));
+      Access<T>::put(msg, field_, seconds);
     } else {
-      double now_us = now * 1e6;
-      if (now_us > 9e18) now_us = 9e18;
-      if (now_us < -9e18) now_us = -9e18;
-      __int128 diff = static_cast<__int128>(now_us) - static_cast<__int128>(*v);
-      __int128 shifted = diff + window_us_ / 2;
-      __int128 k = shifted / window_us_;
-      if (shifted % window_us_ < 0) --k;  // floor division
-      __int128 result = static_cast<__int128>(*v) + k * window_us_;
-      if (result < 0 && std::is_unsigned_v<T>) result = *v;
-      Access<T>::put(msg, field_, static_cast<T>(result));
+      // Defined for every clock: a far-off clock saturates.
+      double us = std::floor(seconds * 1e6 + 0.5);
+      if (std::is_unsigned_v<T> && !(us >= 0)) us = 0;
+      Access<T>::put(msg, field_, static_cast<T>(x86_double_to_u64(us)));
     }
   }
 
@@ -87,14 +88,25 @@ class TimeElement final : public ElementCodec {
   const gp::FieldDescriptor* field_;
   std::string path_;
   double window_s_ = kSecondsPerDay;
-  __int128 window_us_ = 1;
-  NumericCore<T> core_;
+  double decode_scale_ = 1;  // 10^precision: the decoder rounds to it
+  NumericCore<double> core_;
 };
 
-// dccl.static: no bits; every decoded message gets static_value.
+// The reference reads static_value with `istream >> value`: only the first
+// whitespace-separated word counts, for strings too ("hello world" decodes
+// as "hello").
+std::string first_word(const std::string& text) {
+  size_t b = text.find_first_not_of(" \t\n\v\f\r");
+  if (b == std::string::npos) return "";
+  size_t e = text.find_first_of(" \t\n\v\f\r", b);
+  return text.substr(b, e == std::string::npos ? std::string::npos : e - b);
+}
+
+// dccl.static: no bits; every decoded message gets the first word of
+// static_value.
 class StaticElement final : public ElementCodec {
  public:
-  StaticElement(const FieldContext& ctx) : field_(ctx.field), text_(ctx.options.static_value) {
+  StaticElement(const FieldContext& ctx) : field_(ctx.field), text_(first_word(ctx.options.static_value)) {
     auto bad = [&]() {
       ctx.fail("static_value \"" + text_ + "\" is not a valid " + field_->type_name());
     };
@@ -121,9 +133,9 @@ class StaticElement final : public ElementCodec {
         b_ = text_ == "true" || text_ == "1";
         break;
       case gp::FieldDescriptor::CPPTYPE_ENUM:
-        e_ = field_->enum_type()->FindValueByName(text_);
-        if (e_ == nullptr) bad();
-        break;
+        // The reference has no dccl.static for enums: it refuses the type,
+        // so no fielded vehicle sends it.
+        throw TypeRefused(ctx.path + ": dccl.static does not support enum fields (the reference DCCL refuses this type)");
       case gp::FieldDescriptor::CPPTYPE_MESSAGE:
         ctx.fail("dccl.static does not support message fields");
     }
@@ -145,7 +157,7 @@ class StaticElement final : public ElementCodec {
       case gp::FieldDescriptor::CPPTYPE_DOUBLE: r->SetDouble(msg, field_, d_); break;
       case gp::FieldDescriptor::CPPTYPE_FLOAT: r->SetFloat(msg, field_, static_cast<float>(d_)); break;
       case gp::FieldDescriptor::CPPTYPE_BOOL: r->SetBool(msg, field_, b_); break;
-      case gp::FieldDescriptor::CPPTYPE_ENUM: r->SetEnum(msg, field_, e_); break;
+      case gp::FieldDescriptor::CPPTYPE_ENUM:  // refused at load
       case gp::FieldDescriptor::CPPTYPE_MESSAGE: break;
     }
   }
@@ -157,7 +169,6 @@ class StaticElement final : public ElementCodec {
   unsigned long long u_ = 0;
   double d_ = 0;
   bool b_ = false;
-  const gp::EnumValueDescriptor* e_ = nullptr;
 };
 
 }  // namespace

@@ -120,6 +120,15 @@ void QueueManager::restore() {
     auto it = by_name_.find(record.type);
     QueuedMessage message;
     message.record = record;
+    if (it == by_name_.end() && !codec_.refusal(record.type).empty()) {
+      // The type's definition still loads but this codec refuses the type
+      // (one the reference DCCL refuses, or one using dynamic_conditions):
+      // the user did not remove it, so the message stays stored for a
+      // version or definition that can send it.
+      spdlog::warn("queue: stored message {} of type {} kept in the store but not queued: {}", record.id,
+                   record.type, codec_.refusal(record.type));
+      continue;
+    }
     if (it == by_name_.end()) {
       // No queue to put it in: log it against no type, and let it go.
       QueueEvent event{QueueEventKind::kDropped, now, record.type, record.id, 0, record.src, record.dest,

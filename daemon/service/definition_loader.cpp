@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -74,9 +75,18 @@ std::vector<RecordedDefinition> DefinitionLoader::read_recorded(store::Database&
 void DefinitionLoader::load_recorded(dccl::Codec& codec, const std::vector<RecordedDefinition>& recorded) {
   for (const RecordedDefinition& definition : recorded) {
     try {
+      const std::map<std::string, std::string> refused_before = codec.refused_types();
       auto types = codec.load(definition.path, definition.include_dirs);
       spdlog::info("dccl: {} (loaded through the API): {} message type{}", definition.path, types.size(),
                    types.size() == 1 ? "" : "s");
+      // A type an older acommsd accepted may be refused now (issue 17): the
+      // daemon runs on, its stored messages are kept (queue restore).
+      for (const auto& [type, why] : codec.refused_types()) {
+        if (!refused_before.count(type)) {
+          spdlog::warn("dccl: {} (loaded through the API): type {} refused, its stored messages are kept: {}",
+                       definition.path, type, why);
+        }
+      }
     } catch (const dccl::Error& e) {
       spdlog::error("dccl: {} was loaded through the API but no longer loads; messages queued under its "
                     "types will be dropped: {}",

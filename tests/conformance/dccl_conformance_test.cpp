@@ -15,6 +15,7 @@
 
 #include "dccl/codec.h"
 #include "dccl/hex.h"
+#include "dccl/vector_line.h"
 
 namespace {
 
@@ -40,16 +41,9 @@ std::vector<Vector> read_vectors() {
   while (std::getline(in, line)) {
     ++n;
     if (line.empty() || line[0] != '|') continue;
-    size_t bar = line.find('|', 1);
-    size_t arrow = line.rfind(" => ");
-    if (bar == std::string::npos || arrow == std::string::npos) continue;
-    Vector v;
-    v.line = n;
-    v.type = line.substr(1, bar - 1);
-    v.text = line.substr(bar + 1, arrow - bar - 1);
-    v.hex = line.substr(arrow + 4);
-    while (!v.hex.empty() && std::isspace(static_cast<unsigned char>(v.hex.back()))) v.hex.pop_back();
-    out.push_back(v);
+    acomms::dccl::VectorLine parsed = acomms::dccl::parse_vector_line(line);
+    if (parsed.hex.empty()) continue;
+    out.push_back(Vector{n, parsed.type, parsed.text, parsed.hex});
   }
   return out;
 }

@@ -65,6 +65,23 @@ TEST_F(AcommsctlDccl, EncodeReportsBadLinesAndFailsAtTheEnd) {
   EXPECT_EQ(out[4], "fe");
 }
 
+// " => " starts the vector hex only outside string literals (issue 17):
+// the first two lines are the same message ('=' written as \075 in the
+// second), the third adds a vector tail.
+TEST_F(AcommsctlDccl, ArrowInsideAStringIsPartOfTheString) {
+  RunResult result = dccl({"encode", "-f", kGvProto},
+                          "|gv.Str4| s: \"a => b\" r: \"abc\"\n"
+                          "|gv.Str4| s: \"a \\075> b\" r: \"abc\"\n"
+                          "|gv.Str4| s: \"a => b\" r: \"abc\" => 00\n");
+  EXPECT_EQ(result.exit_code, 0) << result.out;
+  std::vector<std::string> out = acomms::testing::lines_of(result.out);
+  ASSERT_EQ(out.size(), 3u) << result.out;
+  EXPECT_EQ(out[0], out[1]);
+  EXPECT_EQ(out[0], out[2]);
+  // id 8 bits; s: presence 1 + length 4 + 6 bytes; r: length 2 + 3 bytes; b: 1.
+  EXPECT_EQ(out[0].size(), 2u * ((8 + 1 + 4 + 48 + 2 + 24 + 1 + 7) / 8)) << out[0];
+}
+
 TEST_F(AcommsctlDccl, StrictModeRefusesOutOfRangeValues) {
   RunResult lenient = dccl({"encode", "-f", kGvProto}, "|gv.Num4| ri: 101 ru: 0\n");
   EXPECT_EQ(lenient.exit_code, 0);

@@ -5,10 +5,13 @@
 
 #include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "core/config_error.h"
 #include "core/config_loader.h"
@@ -35,6 +38,25 @@ TEST(MessageDefinitions, LoadsTheConfiguredFiles) {
   auto codec = make_codec(dccl_config("proto_files: \"" + kGvProto + "\""));
   EXPECT_NE(codec->find_type("gv.NavigationReport"), nullptr);
   EXPECT_EQ(encode_nav(*codec), "f834987170463213");
+}
+
+// probe.proto holds a type the reference DCCL refuses (dccl.static on an
+// enum): the daemon still starts, with the file's other types, and says so.
+TEST(MessageDefinitions, ARefusedTypeIsReportedAtStartAndTheRestOfItsFileLoads) {
+  std::ostringstream log;
+  auto previous = spdlog::default_logger();
+  spdlog::set_default_logger(
+      std::make_shared<spdlog::logger>("test", std::make_shared<spdlog::sinks::ostream_sink_mt>(log)));
+  std::unique_ptr<dccl::Codec> codec;
+  EXPECT_NO_THROW(codec = make_codec(dccl_config("proto_files: \"" ACOMMS_SHARED_DIR
+                                                 "/conformance/dccl/probe.proto\"")));
+  spdlog::set_default_logger(previous);
+  ASSERT_NE(codec, nullptr);
+  EXPECT_NE(codec->find_type("probe.Statics"), nullptr);
+  EXPECT_EQ(codec->find_type("probe.StaticEnum"), nullptr);
+  EXPECT_NE(log.str().find("type probe.StaticEnum refused: probe.StaticEnum.e: dccl.static does not support enum"),
+            std::string::npos)
+      << log.str();
 }
 
 TEST(MessageDefinitions, PassphraseEncryptsAsTheSpecVector) {

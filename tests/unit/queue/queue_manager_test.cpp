@@ -455,6 +455,33 @@ TEST_F(QueueTest, RestoreBringsBackInFlightMessagesAsEligible) {
   EXPECT_EQ(request(100)[0].message_ids.size(), 2u);
 }
 
+// A newer acommsd may refuse a type an older one accepted (issue 17: types
+// the reference DCCL refuses, dynamic_conditions). Its stored messages are
+// kept, not dropped as for a type whose definition is gone.
+TEST_F(QueueTest, RestoreKeepsStoredMessagesOfATypeTheCodecNowRefuses) {
+  make();
+  submit("qt.Status", "dest: 2 value: 1");
+  manager_.reset();
+
+  std::string refusing_proto = kProto;
+  const std::string field = "optional int32 value = 3 [(dccl.field) = { min: 0 max: 1000 }];";
+  refusing_proto.replace(refusing_proto.find(field), field.size(),
+                         "optional int32 value = 3 [(dccl.field) = { min: 0 max: 1000 "
+                         "dynamic_conditions { max: \"10\" } }];");
+  std::ofstream(dir_ / "qt_next.proto") << refusing_proto;
+  dccl::Codec next;
+  next.load((dir_ / "qt_next.proto").string());
+  ASSERT_FALSE(next.refusal("qt.Status").empty());
+  v1::QueueConfig config;
+  config.add_type()->set_type("qt.Command");
+  QueueManager restarted(next, config, kOwnId, clock_, journal_);
+  restarted.restore();
+
+  EXPECT_EQ(count(QueueEventKind::kDropped), 0);
+  ASSERT_EQ(journal_.load().size(), 1u);
+  EXPECT_EQ(journal_.load()[0].type, "qt.Status");
+}
+
 TEST_F(QueueTest, UnknownTypesAndBadConfigAreClearErrors) {
   make();
   auto other = codec_.new_message("qt.Status");
