@@ -63,6 +63,15 @@ class FakeMac final : public mac::Mac {
     t.set_dest(dest);
     transmit_(t);
   }
+  // A slot of `seconds` at `rate` that began at `start` (seconds since 1970).
+  void timed_slot(int32_t rate, double seconds, double start) {
+    v1::ModemTransmission t;
+    t.set_src(1);
+    t.set_rate(rate);
+    t.set_slot_seconds(seconds);
+    t.set_time(start);
+    transmit_(t);
+  }
   Transmit transmit_;
   mac::Cycle cycle_;
   int heard = 0;
@@ -170,6 +179,51 @@ TEST_F(LinkControllerTest, ReceivedFramesAreSplitAndDeliveredWhenForUs) {
   EXPECT_EQ(delivered_, (std::vector<std::string>{"src: 3 dest: 1 value: 5", "src: 3 dest: 0 value: 7"}));
   EXPECT_EQ(mac_.heard, 1);
   EXPECT_EQ(link_->stats().messages_delivered, 2u);
+}
+
+// The fake driver's timing is driver.h's default (rate table + 10 %): at
+// rate 5 with an ACK and the 2000 m guard, one frame needs 4.74 s of the
+// slot, two 5.17 s.
+TEST_F(LinkControllerTest, AsksTheQueuesOnlyForTheFramesThatFitTheSlot) {
+  for (int v = 1; v <= 3; ++v) submit("dest: 2 value: " + std::to_string(v));
+  mac_.timed_slot(5, 5.0, clock_.now_seconds());
+  ASSERT_EQ(driver_.sent.size(), 1u);
+  EXPECT_EQ(driver_.sent[0].max_num_frames(), 1u);
+  ASSERT_EQ(driver_.sent[0].frame_size(), 1);
+  EXPECT_EQ(codec_.decode(driver_.sent[0].frame(0)).size(), 2u);
+  // A longer slot: the rate's (the driver's) two frames.
+  mac_.timed_slot(5, 5.2, clock_.now_seconds());
+  EXPECT_EQ(driver_.sent[1].max_num_frames(), 2u);
+}
+
+TEST_F(LinkControllerTest, ARequestLateInItsSlotGetsWhatIsLeftOfIt) {
+  link_ = std::make_unique<LinkController>(
+      1, *queues_, mac_, driver_, [](queue::ReceivedMessage, const v1::ModemTransmission&) {},
+      LinkOptions{&clock_, kDefaultMaxRangeM});
+  link_->start();
+  for (int v = 1; v <= 3; ++v) submit("dest: 2 value: " + std::to_string(v));
+  // 6 s slot, begun 1 s ago: 5 s are left, one frame's worth.
+  mac_.timed_slot(5, 6.0, clock_.now_seconds() - 1.0);
+  ASSERT_EQ(driver_.sent.size(), 1u);
+  EXPECT_EQ(driver_.sent[0].frame_size(), 1);
+  // With the guard for 100 m instead, the same 5 s hold both frames.
+  link_ = std::make_unique<LinkController>(
+      1, *queues_, mac_, driver_, [](queue::ReceivedMessage, const v1::ModemTransmission&) {},
+      LinkOptions{&clock_, 100});
+  link_->start();
+  mac_.timed_slot(5, 6.0, clock_.now_seconds() - 1.0);
+  ASSERT_EQ(driver_.sent.size(), 2u);
+  EXPECT_EQ(driver_.sent[1].frame_size(), 2);
+}
+
+TEST_F(LinkControllerTest, ASlotTooShortForOneFrameSendsNothingAndKeepsTheQueue) {
+  submit("dest: 2 value: 1");
+  mac_.timed_slot(5, 4.0, clock_.now_seconds());
+  ASSERT_EQ(driver_.sent.size(), 1u);
+  EXPECT_EQ(driver_.sent[0].max_num_frames(), 0u);
+  EXPECT_EQ(driver_.sent[0].frame_size(), 0);  // not even the empty broadcast
+  EXPECT_EQ(queues_->find_queue("lt.Status")->size(), 1u);
+  EXPECT_EQ(queues_->stats("lt.Status").sent, 0u);
 }
 
 TEST_F(LinkControllerTest, StopStopsMacAndDriver) {
