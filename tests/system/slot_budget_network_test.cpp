@@ -51,14 +51,16 @@ message Reading {
 }
 )";
 
-// 6 s slots at rate 5 (the default guard, 2000 m): 0.3 s + n x 0.386 s of
-// air, 1.2 s of turnaround and ACK, 2 x 1.333 s of travel: n = 4 fits.
-constexpr const char* kMac = R"(name: "fixed" epoch: 1748772000
-                                 slot { src: 1 rate: 5 seconds: 6 } slot { src: 2 rate: 5 seconds: 6 })";
+// Fixed TDMA at rate 5: a slot each, `seconds` long; `extra` adds to it.
+std::string fixed_mac(double seconds, const std::string& extra) {
+  std::string slot = " rate: 5 seconds: " + std::to_string(seconds) + " }";
+  return "name: \"fixed\" epoch: " + std::to_string(kStart) + " slot { src: 1" + slot + " slot { src: 2" + slot +
+         " " + extra;
+}
 
 struct Node {
   Node(int32_t id, double x, core::SimulatedScheduler& scheduler, std::shared_ptr<drivers::SimChannel> channel,
-       const std::string& proto) {
+       const std::string& proto, const std::string& mac_text) {
     codec.load(proto);
     v1::QueueConfig queue_config;
     pb::TextFormat::ParseFromString(R"(type { type: "slot.Reading" policy { max_queue: 5000 ttl_s: 86400 }
@@ -70,7 +72,7 @@ struct Node {
     driver_config.set_modem_id(static_cast<uint32_t>(id));
     driver_config.mutable_sim()->mutable_position()->set_x(x);
     driver = std::make_unique<drivers::SimDriver>(driver_config, scheduler, channel);
-    pb::TextFormat::ParseFromString(kMac, &mac_config);
+    EXPECT_TRUE(pb::TextFormat::ParseFromString(mac_text, &mac_config)) << mac_text;
     mac = mac::make_mac(mac_config, id, scheduler);
     link = std::make_unique<link::LinkController>(
         id, *queues, *mac, *driver,
@@ -101,23 +103,29 @@ struct Node {
   std::map<double, int> packets;          // DATA heard here: arrival time -> frames
 };
 
-TEST(SlotBudgetNetwork, ShortSlotsCarryExactlyTheFramesThatFitAndEveryMessageArrives) {
+// Two nodes 1 km apart with a backlog of kBacklog messages each way, on
+// `slot_seconds` slots at rate 5 with mac.max_range_m `max_range_m` (< 0:
+// unset). Each packet must carry exactly `expected_fit` frames (the last of
+// a backlog what is left), every message must arrive and be acknowledged,
+// and nothing may be lost to half-duplex or collisions.
+void run_backlog(double slot_seconds, double max_range_m, uint32_t expected_fit) {
   fs::path dir = fs::temp_directory_path() / ("acomms-slot-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   std::ofstream(dir / "slot.proto") << kReadingProto;
   core::SimulatedScheduler scheduler{core::Clock::time_point(std::chrono::seconds(kStart))};
   auto channel = drivers::SimChannel::create(/*seed=*/13);
-  Node one(1, 0, scheduler, channel, (dir / "slot.proto").string());
-  Node two(2, 1000, scheduler, channel, (dir / "slot.proto").string());
+  const std::string mac =
+      fixed_mac(slot_seconds, max_range_m < 0 ? "" : "max_range_m: " + std::to_string(max_range_m));
+  Node one(1, 0, scheduler, channel, (dir / "slot.proto").string(), mac);
+  Node two(2, 1000, scheduler, channel, (dir / "slot.proto").string(), mac);
 
-  // What fits: 4 frames, where the rate allows 8 (a full packet would need
-  // 3.39 + 1.2 + 2.67 = 7.26 s of a 6 s slot).
   link::SlotBudget budget;
   budget.rate = 5;
-  budget.time_left = 6s;
+  budget.time_left = std::chrono::nanoseconds(static_cast<int64_t>(slot_seconds * 1e9));
   budget.ack_requested = true;
+  budget.max_range_m = max_range_m < 0 ? link::kDefaultMaxRangeM : max_range_m;
   const uint32_t fit = link::frames_that_fit(*one.driver, budget, link::find_rate(5)->max_num_frames);
-  ASSERT_EQ(fit, 4u);
+  ASSERT_EQ(fit, expected_fit);
 
   for (int seq = 0; seq < kBacklog; ++seq) {
     one.submit(1, 2, seq);
@@ -125,8 +133,8 @@ TEST(SlotBudgetNetwork, ShortSlotsCarryExactlyTheFramesThatFitAndEveryMessageArr
   }
   one.link->start();
   two.link->start();
-  // Each packet holds 4 x 256 bytes of ~5-byte messages, about 200; 1500
-  // take 8 packets, one per 12 s cycle. Run well past that.
+  // A packet of 3 or 4 x 256 bytes holds 150-200 of these ~5-byte messages:
+  // 1500 take 8-10 packets, one a cycle. Run well past that.
   scheduler.run_for(std::chrono::minutes(10));
 
   for (Node* node : {&one, &two}) {
@@ -160,6 +168,20 @@ TEST(SlotBudgetNetwork, ShortSlotsCarryExactlyTheFramesThatFitAndEveryMessageArr
     EXPECT_EQ(node->link->stats().acks_received, other.packets.size()) << "at node " << id;
   }
   fs::remove_all(dir);
+}
+
+// 6 s slots, the default guard (2000 m): 0.3 s + n x 0.386 s of air, 1.2 s
+// of turnaround and ACK, 2 x 1.333 s of travel fit for n = 4, where the rate
+// allows 8 (a full packet would need 7.26 s).
+TEST(SlotBudgetNetwork, SixSecondSlotsCarryTheFourFramesThatFitAndEveryMessageArrives) {
+  run_backlog(6, -1, 4);
+}
+
+// The issue's network: 4 s slots, the nodes known to be within 1 km
+// (max_range_m 1000): 0.3 + n x 0.386 + 1.2 + 2 x 0.667 <= 4 s for n = 3.
+// Full packets (3.39 s of air) used to lose every packet to half-duplex.
+TEST(SlotBudgetNetwork, FourSecondSlotsAtOneKilometreCarryTheThreeFramesThatFitAndEveryMessageArrives) {
+  run_backlog(4, 1000, 3);
 }
 
 // examples/vehicle.conf and topside.conf: 10 s slots at rate 1, nodes 1.5 km
