@@ -58,6 +58,12 @@ void LinkController::start() {
   };
   driver_.start(std::move(callbacks));
   mac_.start([this](const v1::ModemTransmission& t) {
+    // The driver's data request, if any, comes within this call.
+    struct OwnSlot {
+      bool& flag;
+      explicit OwnSlot(bool& f) : flag(f) { flag = true; }
+      ~OwnSlot() { flag = false; }
+    } own_slot(in_own_slot_);
     try {
       driver_.initiate_transmission(t);
     } catch (const DriverError& e) {
@@ -111,6 +117,11 @@ uint32_t LinkController::frames_for_slot(const v1::ModemTransmission& transmissi
   SlotBudget budget;
   budget.rate = transmission.rate();
   budget.time_left = time_left(transmission, options_.clock);
+  if (!in_own_slot_) {
+    // Answering a poll: the slot began the poll's travel before we heard it.
+    budget.time_left = std::max(std::chrono::nanoseconds(0),
+                                budget.time_left - travel_time(driver_, options_.max_range_m));
+  }
   budget.ack_requested = transmission.ack_requested();
   budget.max_range_m = options_.max_range_m;
   uint32_t fit = frames_that_fit(driver_, budget, limit);

@@ -7,7 +7,10 @@
 // A data request asks the queues for no more frames than fit in what is
 // left of the slot (link/slot_budget.h, with the driver's timing): a packet
 // that outruns its slot is lost by a half-duplex neighbour whose own slot
-// has begun.
+// has begun. A request that answers a poll (one the MAC did not start) is
+// dated from the poll's arrival (transmission_rules.h), later than the
+// master's slot start by the poll's travel: the budget takes one more
+// travel guard off what is left.
 
 #include <cstdint>
 #include <functional>
@@ -76,6 +79,7 @@ class LinkController {
   Driver& driver_;
   Deliver deliver_;
   LinkOptions options_;
+  bool in_own_slot_ = false;  // the MAC's transmission is being started
   // Slot shapes (src, rate, seconds) already warned about as too short.
   std::set<std::tuple<int32_t, int32_t, double>> short_slots_warned_;
   // Queue frame ids of the last DATA transmission to each destination, by

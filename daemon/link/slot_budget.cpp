@@ -7,15 +7,15 @@ namespace acomms::link {
 
 namespace {
 
+double seconds(std::chrono::nanoseconds t) { return std::chrono::duration<double>(t).count(); }
+
+}  // namespace
+
 std::chrono::nanoseconds travel_time(const Driver& driver, double max_range_m) {
   double speed = driver.sound_speed();
   if (!(speed > 0) || !(max_range_m > 0)) return std::chrono::nanoseconds(0);
   return std::chrono::nanoseconds(static_cast<int64_t>(std::ceil(max_range_m / speed * 1e9)));
 }
-
-double seconds(std::chrono::nanoseconds t) { return std::chrono::duration<double>(t).count(); }
-
-}  // namespace
 
 std::chrono::nanoseconds slot_time_needed(const Driver& driver, const SlotBudget& budget, uint32_t num_frames) {
   std::chrono::nanoseconds travel = travel_time(driver, budget.max_range_m);

@@ -42,6 +42,10 @@ struct SlotBudget {
   double max_range_m = kDefaultMaxRangeM;
 };
 
+// The longest one-way travel: max_range_m / the driver's sound speed
+// (rounded up; zero when either is zero).
+std::chrono::nanoseconds travel_time(const Driver& driver, double max_range_m);
+
 // The time a packet of `num_frames` frames takes out of its slot, by the
 // formula above.
 std::chrono::nanoseconds slot_time_needed(const Driver& driver, const SlotBudget& budget, uint32_t num_frames);

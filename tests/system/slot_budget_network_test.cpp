@@ -184,6 +184,47 @@ TEST(SlotBudgetNetwork, FourSecondSlotsAtOneKilometreCarryTheThreeFramesThatFitA
   run_backlog(4, 1000, 3);
 }
 
+// Polled: node 1, the master, polls node 2 in 8 s slots; node 2 answers
+// with its backlog. The answer starts after the poll (0.7 s), its travel
+// (0.67 s) and the turnaround (0.5 s), and is dated from the poll's
+// arrival, so the budget also takes the poll's travel (up to 2000 m,
+// 1.33 s) off: 8 - 1.2 - 1.33 = 5.47 s left, 0.3 + n x 0.386 + 1.2 +
+// 2 x 1.333 <= 5.47 for n = 3.
+TEST(SlotBudgetNetwork, AnswersToPollsCarryTheFramesThatFitInWhatIsLeftOfTheSlot) {
+  fs::path dir = fs::temp_directory_path() / ("acomms-slot-poll-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "slot.proto") << kReadingProto;
+  core::SimulatedScheduler scheduler{core::Clock::time_point(std::chrono::seconds(kStart))};
+  auto channel = drivers::SimChannel::create(/*seed=*/17);
+  Node master(1, 0, scheduler, channel, (dir / "slot.proto").string(),
+              "name: \"polled\" epoch: " + std::to_string(kStart) + " slot { src: 2 dest: 1 rate: 5 seconds: 8 }");
+  Node polled(2, 1000, scheduler, channel, (dir / "slot.proto").string(), "name: \"none\"");
+  constexpr int kMessages = 600;
+  for (int seq = 0; seq < kMessages; ++seq) polled.submit(2, 1, seq);
+  master.link->start();
+  polled.link->start();
+  scheduler.run_for(std::chrono::minutes(5));
+
+  std::vector<int> seqs = master.seqs;
+  std::sort(seqs.begin(), seqs.end());
+  std::vector<int> all(kMessages);
+  for (int i = 0; i < kMessages; ++i) all[i] = i;
+  EXPECT_EQ(seqs, all);
+  EXPECT_EQ(polled.queues->find_queue("slot.Reading")->size(), 0u);
+  ASSERT_GE(master.packets.size(), 2u);
+  size_t index = 0;
+  for (const auto& [time, frames] : master.packets) {
+    if (++index < master.packets.size()) EXPECT_EQ(frames, 3) << "packet " << index;
+  }
+  EXPECT_LE(master.packets.rbegin()->second, 3);
+  for (Node* node : {&master, &polled}) {
+    EXPECT_EQ(node->driver->counters().lost_half_duplex, 0u);
+    EXPECT_EQ(node->driver->counters().lost_collision, 0u);
+  }
+  EXPECT_EQ(polled.link->stats().acks_received, master.packets.size());
+  fs::remove_all(dir);
+}
+
 // examples/vehicle.conf and topside.conf: 10 s slots at rate 1, nodes 1.5 km
 // apart, mac.max_range_m 1700. The sim driver they name must be able to
 // carry full packets (3 x 64 bytes) with their ACKs in every slot.

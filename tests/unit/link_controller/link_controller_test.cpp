@@ -44,6 +44,14 @@ class FakeDriver final : public Driver {
     sent.push_back(out);
   }
   void receive(const v1::ModemTransmission& t) { callbacks_.on_receive(t); }
+  // A poll for us heard: the driver asks for our data on its own.
+  void answer_poll(const v1::ModemTransmission& response) {
+    v1::ModemTransmission out = response;
+    out.set_max_frame_bytes(8);
+    out.set_max_num_frames(2);
+    callbacks_.on_data_request(&out);
+    sent.push_back(out);
+  }
 
   DriverCallbacks callbacks_;
   std::vector<v1::ModemTransmission> initiated, sent;
@@ -214,6 +222,30 @@ TEST_F(LinkControllerTest, ARequestLateInItsSlotGetsWhatIsLeftOfIt) {
   mac_.timed_slot(5, 6.0, clock_.now_seconds() - 1.0);
   ASSERT_EQ(driver_.sent.size(), 2u);
   EXPECT_EQ(driver_.sent[1].frame_size(), 2);
+}
+
+TEST_F(LinkControllerTest, AnAnswerToAPollAlsoAllowsForThePollsTravel) {
+  link_ = std::make_unique<LinkController>(
+      1, *queues_, mac_, driver_, [](queue::ReceivedMessage, const v1::ModemTransmission&) {},
+      LinkOptions{&clock_, kDefaultMaxRangeM});
+  link_->start();
+  for (int v = 1; v <= 3; ++v) submit("dest: 2 value: " + std::to_string(v));
+  // Dated 1.2 s ago (the poll's arrival began, then the turnaround) in a
+  // 7.5 s slot: 6.3 s left, less the poll's travel from up to 2000 m
+  // (1.33 s): 4.97 s, one frame's worth.
+  v1::ModemTransmission answer;
+  answer.set_src(1);
+  answer.set_rate(5);
+  answer.set_slot_seconds(7.5);
+  answer.set_time(clock_.now_seconds() - 1.2);
+  driver_.answer_poll(answer);
+  ASSERT_EQ(driver_.sent.size(), 1u);
+  EXPECT_EQ(driver_.sent[0].max_num_frames(), 1u);
+  EXPECT_EQ(driver_.sent[0].frame_size(), 1);
+  // The MAC's own slot, dated alike, has its whole 6.3 s: two frames.
+  mac_.timed_slot(5, 7.5, clock_.now_seconds() - 1.2);
+  ASSERT_EQ(driver_.sent.size(), 2u);
+  EXPECT_EQ(driver_.sent[1].max_num_frames(), 2u);
 }
 
 TEST_F(LinkControllerTest, ASlotTooShortForOneFrameSendsNothingAndKeepsTheQueue) {
