@@ -608,57 +608,5 @@ TEST(AcommsctlSubscribe, PrintsOneJsonLinePerReceivedMessage) {
   fs::remove_all(dir);
 }
 
-// Two nodes at one place whose cycles disagree (each thinks the first slot
-// is its own) transmit at the same moments: each hears the other's packet
-// while transmitting and loses it. `link status` counts those losses.
-TEST(AcommsctlLinkStatus, CountsPacketsLostToHalfDuplex) {
-  fs::path dir = fs::path("/tmp") / ("acomms-ctl-hd-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const int port1 = free_udp_port(), port2 = free_udp_port();
-  auto mac = [](int first, int second) {
-    return "name: \"fixed\" slot { src: " + std::to_string(first) + " rate: 5 seconds: 2 } slot { src: " +
-           std::to_string(second) + " rate: 5 seconds: 2 } max_range_m: 0";
-  };
-  auto sim = [](int listen, int peer) {
-    return "sim { listen: \"127.0.0.1:" + std::to_string(listen) + "\" peers: \"127.0.0.1:" + std::to_string(peer) +
-           "\" }";
-  };
-  std::ofstream(dir / "n1.conf") << node_config(dir, "n1", 1, sim(port1, port2), mac(1, 2));
-  std::ofstream(dir / "n2.conf") << node_config(dir, "n2", 2, sim(port2, port1), mac(2, 1));
-  ChildProcess node1(kAcommsd, {"--config", (dir / "n1.conf").string()}, (dir / "n1").string());
-  ChildProcess node2(kAcommsd, {"--config", (dir / "n2.conf").string()}, (dir / "n2").string());
-  const std::string socket2 = (dir / "n2.sock").string();
-  ASSERT_TRUE(wait_serving(node1, (dir / "n1.sock").string())) << node1.stderr_text();
-  ASSERT_TRUE(wait_serving(node2, socket2)) << node2.stderr_text();
-
-  v1::LinkStatusResponse link;
-  auto lost = [&] {
-    RunResult status = run(kAcommsctl, {"--socket", socket2, "link", "status", "--json"}, (dir / "ctl").string());
-    if (status.exit_code != 0) return false;
-    link = parse_json<v1::LinkStatusResponse>(status.out);
-    return link.counters().lost_half_duplex() >= 2;
-  };
-  EXPECT_TRUE(wait_until(lost, 30s, 500ms)) << link.DebugString() << node2.stderr_text();
-  EXPECT_EQ(link.counters().lost_collision(), 0u);
-  EXPECT_EQ(link.counters().data_received(), 0u);
-  // Logged once for the burst, not once per packet.
-  const std::string log = node2.stderr_text();
-  const std::string first = "packet from 1 lost to half-duplex";
-  EXPECT_NE(log.find(first), std::string::npos) << log;
-  EXPECT_EQ(log.find(first, log.find(first) + 1), std::string::npos) << log;
-
-  RunResult human = run(kAcommsctl, {"--socket", socket2, "link", "status"}, (dir / "ctl").string());
-  EXPECT_EQ(human.exit_code, 0) << human.err;
-  EXPECT_NE(human.out.find("lost to half-duplex "), std::string::npos) << human.out;
-  EXPECT_NE(human.out.find(", lost to collisions 0"), std::string::npos) << human.out;
-
-  node1.signal(SIGTERM);
-  node2.signal(SIGTERM);
-  node1.wait(10s);
-  node2.wait(10s);
-  fs::remove_all(dir);
-}
-
 }  // namespace
 }  // namespace acomms::testing
