@@ -5,7 +5,7 @@
 namespace acomms::cli {
 
 ApiClient::ApiClient(const GlobalOptions& options)
-    : timeout_s_(options.timeout_s), stub_(v1::Acomms::NewStub(connect(options.endpoint, options.timeout_s))) {}
+    : timeout_s_(options.timeout_s), stub_(v1::Acomms::NewStub(connect(options))) {}
 
 void ApiClient::set_deadline(grpc::ClientContext& context) const {
   context.set_deadline(std::chrono::system_clock::now() +

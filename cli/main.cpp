@@ -13,6 +13,7 @@
 #include "defs_command.h"
 #include "events_command.h"
 #include "global_options.h"
+#include "gram_command.h"
 #include "link_command.h"
 #include "queue_command.h"
 #include "rpc_error.h"
@@ -37,7 +38,26 @@ void add_commands(CLI::App& app, const acomms::cli::GlobalOptions& options) {
   add_events_command(app, options);
   add_dccl_command(app, options);
   add_sim_command(app, options);
+  add_gram_command(app);
   add_completion_command(app);
+}
+
+// TLS for --socket tcp:HOST:PORT (ignored for a unix socket).
+void add_tls_options(CLI::App& app, acomms::cli::GlobalOptions& options) {
+  app.add_option("--ca", options.ca_file,
+                 "TCP: PEM file of the CA(s) that issued the daemon's certificate (default: the "
+                 "system's CAs)")
+      ->envname("ACOMMSD_CA")
+      ->type_name("FILE");
+  app.add_option("--cert", options.cert_file,
+                 "TCP: this client's PEM certificate, for a daemon with grpc.tls.client_ca_file")
+      ->envname("ACOMMSD_CERT")
+      ->type_name("FILE");
+  app.add_option("--key", options.key_file, "TCP: the private key of --cert (PEM)")
+      ->envname("ACOMMSD_KEY")
+      ->type_name("FILE");
+  app.add_flag("--insecure", options.insecure,
+               "TCP: plaintext, no TLS (only for a daemon with grpc.insecure_tcp: true)");
 }
 
 }  // namespace
@@ -67,6 +87,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber)
       ->type_name("SECONDS");
   app.add_flag("--json", options.json, "Machine-readable output (one JSON object)");
+  add_tls_options(app, options);
   app.set_version_flag("--version", std::string("acommsctl ") + ACOMMS_VERSION);
 
   add_commands(app, options);

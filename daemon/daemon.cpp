@@ -13,6 +13,19 @@
 namespace acomms {
 
 Daemon::Daemon(const v1::Config& config) : config_(config) {
+  // A start that fails half way (the TCP port is taken, say) must stop what
+  // it started, in order: the link on the core thread, then the core. The
+  // members' destructors alone would stop the driver from this thread while
+  // the core still runs it.
+  try {
+    start();
+  } catch (...) {
+    stop();
+    throw;
+  }
+}
+
+void Daemon::start() {
   store_ = std::make_unique<store::Store>(config_.data_dir());
   std::vector<service::RecordedDefinition> api_definitions =
       service::DefinitionLoader::read_recorded(store_->db());
@@ -34,6 +47,8 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
   definitions_ = std::make_unique<service::DefinitionLoader>(
       *codec_, *queues_, *writer_, (std::filesystem::path(config_.data_dir()) / "definitions").string());
   core_ = std::make_unique<core::EventLoop>();
+  submitter_ = std::make_unique<queue::Submitter>(
+      *queues_, [core = core_.get()](std::function<void()> work) { core->post(std::move(work)); });
   expiry_timer_ = std::make_unique<asio::steady_timer>(core_->context());
   build_link();
   core_->start();
@@ -42,19 +57,19 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
     link_->start();  // the supervisor retries a driver that fails to start
   });
 
-  service::DaemonFacts facts;
-  facts.version = ACOMMS_VERSION;
-  facts.data_dir = config_.data_dir();
-  facts.schema_version = store_->schema_version();
-  facts.driver = config_.driver().name();
-  facts.mac = config_.mac().name();
-  facts.modem_id = config_.driver().modem_id();
+  service::DaemonIdentity identity;
+  identity.version = ACOMMS_VERSION;
+  identity.data_dir = config_.data_dir();
+  identity.schema_version = store_->schema_version();
+  identity.driver = config_.driver().name();
+  identity.mac = config_.mac().name();
+  identity.modem_id = config_.driver().modem_id();
   api_ = std::make_unique<service::AcommsService>(
-      std::move(facts), service::ServiceParts{*codec_, *queues_, *core_, {*mac_, *driver_, *link_}, *definitions_,
-                                              *events_, subscribers_});
+      std::move(identity), service::Node{*codec_, *queues_, *submitter_, *core_, {*mac_, *driver_, *link_},
+                                         *definitions_, *events_, subscribers_});
 
   server_ = std::make_unique<service::GrpcServer>(
-      service::Endpoints{config_.grpc().unix_socket(), config_.grpc().tcp_listen()},
+      service::endpoints_of(config_.grpc()),
       std::vector<grpc::Service*>{api_.get()});
   server_->set_serving(true);
   core::systemd_notify("READY=1\nSTATUS=serving");
@@ -63,7 +78,12 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
 
 Daemon::~Daemon() { stop(); }
 
-// Driver, MAC and the glue between them and the queues. Configuration
+void Daemon::reload_tls() {
+  if (server_) server_->reload_tls();
+}
+
+// Driver, MAC and the LinkController that binds them to the queues (the
+// link's binding). Configuration
 // mistakes (unknown driver, bad cycle) stop the start-up here; device
 // failures later are the supervisor's to retry.
 void Daemon::build_link() {
@@ -136,6 +156,7 @@ void Daemon::stop() {
   scheduler_.reset();
   expiry_timer_.reset();
   core_.reset();
+  submitter_.reset();
   definitions_.reset();
   queues_.reset();
   // Every event recorded so far reaches the disk before the store closes.

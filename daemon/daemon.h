@@ -20,6 +20,7 @@
 #include "queue/queue_manager.h"
 #include "queue/event_log_reader.h"
 #include "queue/sqlite_journal.h"
+#include "queue/submitter.h"
 #include "store/group_commit_writer.h"
 #include "service/grpc_server.h"
 #include "service/acomms_service.h"
@@ -41,7 +42,12 @@ class Daemon {
   // and close the store. Idempotent.
   void stop();
 
+  // SIGHUP: re-reads the API's TLS certificates (logs the outcome).
+  void reload_tls();
+
  private:
+  // The constructor's work, in the order of the file comment.
+  void start();
   void schedule_expiry();
   void build_link();
 
@@ -57,8 +63,11 @@ class Daemon {
   std::unique_ptr<service::DefinitionLoader> definitions_;
   service::SubscriberHub subscribers_;
   std::unique_ptr<core::EventLoop> core_;
+  // Submit's way into the queues, through the core thread.
+  std::unique_ptr<queue::Submitter> submitter_;
   std::unique_ptr<asio::steady_timer> expiry_timer_;
-  // The link, on the core thread: driver (supervised), MAC, and the glue.
+  // The link, on the core thread: driver (supervised), MAC, and the
+  // LinkController that binds them to the queues.
   std::unique_ptr<core::AsioScheduler> scheduler_;
   link::DriverRegistry drivers_;
   std::unique_ptr<link::DriverSupervisor> driver_;

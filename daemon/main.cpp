@@ -17,22 +17,36 @@
 #include "core/logging.h"
 #include "daemon.h"
 #include "link/slot_check.h"
+#include "service/tls_certificates.h"
 
 namespace {
 
 constexpr int kExitStartupError = 1;
 constexpr int kExitUsage = 2;
 
-// Blocks the stop signals in this thread before any other starts, so every
-// thread inherits the mask and the signals wait for sigwait() in main:
-// shutdown then runs as ordinary code, not in a signal handler.
-sigset_t block_stop_signals() {
+// Blocks the signals acommsd acts on in this thread before any other
+// starts, so every thread inherits the mask and the signals wait for
+// sigwait() in main: shutdown (SIGINT, SIGTERM) and reloading the TLS
+// certificates (SIGHUP, systemd's ExecReload) then run as ordinary code, not
+// in a signal handler.
+sigset_t block_handled_signals() {
   sigset_t signals;
   sigemptyset(&signals);
   sigaddset(&signals, SIGINT);
   sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGHUP);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   return signals;
+}
+
+// Serves until SIGINT or SIGTERM; each SIGHUP re-reads the certificates.
+int wait_for_stop(acomms::Daemon& daemon, const sigset_t& signals) {
+  int signal_number = 0;
+  while (sigwait(&signals, &signal_number) == 0 && signal_number == SIGHUP) {
+    spdlog::info("received SIGHUP, reloading TLS certificates");
+    daemon.reload_tls();
+  }
+  return signal_number;
 }
 
 }  // namespace
@@ -89,11 +103,13 @@ int main(int argc, char** argv) {
   }
 
   acomms::core::configure_logging(config.log_level());
-  sigset_t stop_signals = block_stop_signals();
+  sigset_t handled_signals = block_handled_signals();
   try {
+    // The TLS files are checked before anything starts, so that a bad
+    // certificate stops the daemon as cleanly as a bad config.
+    if (config.grpc().has_tls()) acomms::service::TlsCertificates check(config.grpc().tls());
     acomms::Daemon daemon(config);
-    int signal_number = 0;
-    sigwait(&stop_signals, &signal_number);
+    int signal_number = wait_for_stop(daemon, handled_signals);
     spdlog::info("received {}, stopping", signal_number == SIGTERM ? "SIGTERM" : "SIGINT");
     daemon.stop();
   } catch (const std::exception& e) {

@@ -12,6 +12,8 @@ packages=(
   libcrypto++-dev libsqlite3-dev
   # header-only
   libspdlog-dev libfmt-dev libasio-dev libcli11-dev
+  # PNG output of `acommsctl gram tl --png` (stb_image_write)
+  libstb-dev
 )
 if [[ "${1:-}" == "--test" ]]; then
   # clang and its runtime give libFuzzer with ASan/UBSan for the fuzz targets
@@ -20,6 +22,8 @@ if [[ "${1:-}" == "--test" ]]; then
   packages+=(python3-grpcio python3-protobuf)
   # the package test: dpkg-shlibdeps for cpack, systemd-analyze to verify the unit
   packages+=(dpkg-dev systemd)
+  # the TLS tests make their CAs and certificates with the openssl command
+  packages+=(openssl)
 fi
 
 missing=()

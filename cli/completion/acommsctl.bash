@@ -27,156 +27,228 @@ _acommsctl() {
     "")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "status defs send sub queue link events dccl sim completion --help -h --socket -s --timeout --json --version" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "status defs send sub queue link events dccl sim completion --help -h --socket -s --timeout --json --ca --cert --key --insecure --version" -- "$cur")) ;;
     "status")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "defs")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "load list --help -h --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "load list --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "defs load")
       case "$prev" in
         -I|--include) COMPREPLY=($(compgen -d -- "$cur")); return ;;
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --include -I --inline --socket -s --timeout --json" -- "$cur")); else COMPREPLY=($(compgen -f -- "$cur")); fi ;;
+      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --include -I --inline --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")); else COMPREPLY=($(compgen -f -- "$cur")); fi ;;
     "defs list")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --fields --socket -s --timeout --json" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
+      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --fields --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
     "send")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --ttl|--timeout) COMPREPLY=(); return ;;
       esac
-      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --json --interactive -i --ttl --socket -s --timeout" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
+      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --json --interactive -i --ttl --socket -s --timeout --ca --cert --key --insecure" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
     "sub")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --src|--timeout) COMPREPLY=(); return ;;
       esac
-      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --src --socket -s --timeout --json" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
+      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --src --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
     "queue")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "ls cancel flush stats --help -h --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "ls cancel flush stats --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "queue ls")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --limit|--timeout) COMPREPLY=(); return ;;
       esac
-      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --limit --socket -s --timeout --json" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
+      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --limit --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
     "queue cancel")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --reason|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --reason --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --reason --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "queue flush")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
+      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
     "queue stats")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
+      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
     "link")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "status cycle --help -h --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "status cycle --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "link status")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "link cycle")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --json --socket -s --timeout" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --json --socket -s --timeout --ca --cert --key --insecure" -- "$cur")) ;;
     "events")
       case "$prev" in
         --kind) COMPREPLY=($(compgen -W "queued sent acked expired dropped retry received" -- "$cur")); return ;;
         --type) COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); return ;;
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --since|--until|--message|--limit|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --since --until --kind --type --message --limit --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --since --until --kind --type --message --limit --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "dccl")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "encode decode analyze --help -h --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "encode decode analyze --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "dccl encode")
       case "$prev" in
         -f|--proto) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         -I|--include) COMPREPLY=($(compgen -d -- "$cur")); return ;;
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --passphrase|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --proto -f --include -I --passphrase --strict --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --proto -f --include -I --passphrase --strict --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "dccl decode")
       case "$prev" in
         -f|--proto) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         -I|--include) COMPREPLY=($(compgen -d -- "$cur")); return ;;
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --passphrase|-t|--type|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --proto -f --include -I --passphrase --type -t --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --proto -f --include -I --passphrase --type -t --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "dccl analyze")
       case "$prev" in
         -f|--proto) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         -I|--include) COMPREPLY=($(compgen -d -- "$cur")); return ;;
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         -t|--type|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --proto -f --include -I --type -t --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --proto -f --include -I --type -t --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "sim")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "queue-market mac-discovery --help -h --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "queue-market mac-discovery --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "sim queue-market")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --tau-s-ratio|--trials|--seed|--p-empty|--transmissions|--tau|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --tau-s-ratio --trials --seed --p-empty --transmissions --tau --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --tau-s-ratio --trials --seed --p-empty --transmissions --tau --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "sim mac-discovery")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --ids|--start|--slot|--coolness|--p-collide|--expire-cycles|--horizon-cycles|--blank-rule|--seed|--sizes|--trials|--start-window-cycles|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --ids --start --slot --coolness --p-collide --expire-cycles --horizon-cycles --blank-rule --seed --monte-carlo --sizes --trials --start-window-cycles --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --ids --start --slot --coolness --p-collide --expire-cycles --horizon-cycles --blank-rule --seed --monte-carlo --sizes --trials --start-window-cycles --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "completion")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
   esac
 }
 complete -F _acommsctl acommsctl

@@ -139,6 +139,33 @@ bool valid_plugin_name(const std::string& name) {
   return std::regex_match(name, pattern);
 }
 
+// TCP is either TLS or plaintext by an explicit choice: a config written
+// before TLS existed (tcp_listen alone) stops here instead of silently
+// serving anyone on the network.
+template <typename Fail>
+void validate_tcp(const v1::GrpcConfig& grpc, Fail& fail) {
+  if (grpc.tcp_listen().empty()) {
+    if (grpc.has_tls()) fail({"grpc", "tls"}, "applies only to tcp_listen, which is not set");
+    if (grpc.insecure_tcp()) fail({"grpc", "insecure_tcp"}, "applies only to tcp_listen, which is not set");
+    return;
+  }
+  std::string problem = tcp_address_problem(grpc.tcp_listen());
+  if (!problem.empty()) fail({"grpc", "tcp_listen"}, problem);
+  if (!grpc.has_tls() && !grpc.insecure_tcp()) {
+    fail({"grpc", "tcp_listen"},
+         "TCP now needs TLS: add grpc { tls { cert_file: \"...\" key_file: \"...\" } } "
+         "(and client_ca_file for client certificates), or set grpc { insecure_tcp: true } to "
+         "keep plaintext TCP with no authentication (see \"Upgrading\" in the README)");
+  }
+  if (grpc.has_tls() && grpc.insecure_tcp()) {
+    fail({"grpc", "insecure_tcp"}, "set tls or insecure_tcp: true, not both");
+  }
+  if (grpc.has_tls()) {
+    if (grpc.tls().cert_file().empty()) fail({"grpc", "tls", "cert_file"}, "required with tls");
+    if (grpc.tls().key_file().empty()) fail({"grpc", "tls", "key_file"}, "required with tls");
+  }
+}
+
 void validate(const v1::Config& config, const pb::TextFormat::ParseInfoTree& tree,
               const std::string& file_name) {
   auto fail = [&](const std::vector<std::string>& path, const std::string& problem, int index = 0) {
@@ -147,10 +174,7 @@ void validate(const v1::Config& config, const pb::TextFormat::ParseInfoTree& tre
     for (const auto& part : path) dotted += (dotted.empty() ? "" : ".") + part;
     throw ConfigError(file_name, where.line, where.column, dotted, problem);
   };
-  if (!config.grpc().tcp_listen().empty()) {
-    std::string problem = tcp_address_problem(config.grpc().tcp_listen());
-    if (!problem.empty()) fail({"grpc", "tcp_listen"}, problem);
-  }
+  validate_tcp(config.grpc(), fail);
   if (config.grpc().unix_socket().size() >= sizeof(sockaddr_un::sun_path)) {
     fail({"grpc", "unix_socket"},
          "path is " + std::to_string(config.grpc().unix_socket().size()) +

@@ -2,16 +2,18 @@
 // The queues of one node: one per DCCL type, the priority contest between
 // them, frame building, acks, expiry, and the receive side.
 //
-// Threads: journal_new() may run on any thread (it encodes and hands the
-// message to the journal); everything else runs on the core thread only.
+// Threads: the core thread only, but for a client's message, which comes
+// in through Submitter::submit (submitter.h): it runs this class's private
+// journal_new (any thread) and accept (core thread) in order.
 //
-// The contest, at time t, for each place in a frame: a queue takes part if
-// it is out of blackout, has a message not awaiting an ack, that message
-// fits in what is left of the frame, and its destination agrees with the
-// transmission's. The highest P = value_base * (t - t_last_sent) / ttl
-// wins; a tie goes to the queue that sent longest ago, then to the lower
-// DCCL id. The winner's message is appended and the contest runs again
-// until nothing fits.
+// On each transmission the queues contest every place in a frame: the
+// highest priority P = value_base * (t - t_last_sent) / ttl wins (the rules
+// in full open frame_building.cpp).
+//
+// One class, one file per idea: queue_manager.cpp makes the queues, brings
+// them back at start-up and holds the steps of a submit, expiry, Cancel and
+// Flush; frame_building.cpp the contest, build_frames and on_ack;
+// frame_receiving.cpp receive (unstitch, decode, filter).
 
 #include <google/protobuf/message.h>
 
@@ -75,7 +77,8 @@ class QueueManager {
 
   // Makes a queue for every loaded type that has none yet (after the codec
   // loaded more definitions). Returns their names. Must not run
-  // concurrently with journal_new (the caller holds a lock for that).
+  // concurrently with journal_new: the caller holds
+  // Submitter::types_changing().
   std::vector<std::string> add_types();
 
   // Start-up: brings back what the journal holds (after a crash, messages
@@ -83,26 +86,6 @@ class QueueManager {
   // no longer loaded, or that no longer encodes, is dropped with an event.
   // The duplicate filter gets back what was received within its window.
   void restore();
-
-  // Any thread. Fills unset source/timestamp roles, encodes (strict mode
-  // per the codec) and journals the message durably. Throws
-  // UnknownTypeError, or dccl::Error naming the field and bound (or the
-  // required fields still missing once the roles are filled).
-  QueuedMessage journal_new(const google::protobuf::Message& message, double ttl_s = 0) const;
-
-  // The same without waiting for the commit, for callers that must not park
-  // a thread on the disk (the gRPC Submit). Checks and encodes here (and
-  // throws as above); `journaled` then gets the message with its id once it
-  // is durable, or the error that kept it from the disk, on the journal's
-  // thread: it must be short and never wait (hand the message to the core
-  // thread from there). Completions come in the order of the calls.
-  using Journaled = std::function<void(QueuedMessage, std::exception_ptr)>;
-  void journal_new(const google::protobuf::Message& message, double ttl_s, Journaled journaled) const;
-
-  // Puts a journaled message in its queue. Returns false when the queue is
-  // full and refuses new messages (the message is then dropped, with an
-  // event). A full queue that drops its oldest message returns true.
-  bool accept(QueuedMessage message);
 
   // Builds up to request.max_num_frames frames for a transmission. Messages
   // still awaiting an ack from an earlier transmission become eligible
@@ -136,6 +119,28 @@ class QueueManager {
   uint64_t duplicates() const { return duplicates_; }
 
  private:
+  // The steps of a submit, run in order on their threads by
+  // Submitter::submit, the one way a client's message comes in.
+  friend class Submitter;
+
+  // Any thread. Fills unset source/timestamp roles and encodes (strict mode
+  // per the codec): throws UnknownTypeError, QueueFullError (a full
+  // REFUSE_NEW queue, counted as refused), or dccl::Error naming the field
+  // and bound (or the required fields still missing once the roles are
+  // filled); nothing is stored then. Otherwise hands the message to the
+  // journal without waiting for the commit: `journaled` gets it with its id
+  // once it is durable, or the error that kept it from the disk, on the
+  // journal's thread; it must be short and never wait (hand the message to
+  // the core thread from there). Completions come in the order of the calls.
+  using Journaled = std::function<void(QueuedMessage, std::exception_ptr)>;
+  void journal_new(const google::protobuf::Message& message, double ttl_s, Journaled journaled) const;
+
+  // Core thread. Puts a journaled message in its queue. Returns false when
+  // the queue is full and refuses new messages (the message is then
+  // dropped, with an event). A full queue that drops its oldest message
+  // returns true.
+  bool accept(QueuedMessage message);
+
   struct TypeState {
     std::unique_ptr<Queue> queue;
     MessageRoles roles;

@@ -7,7 +7,6 @@
 // subscribe_rpc.cpp.
 
 #include <chrono>
-#include <shared_mutex>
 #include <string>
 
 #include "acomms/v1/acomms.grpc.pb.h"
@@ -18,14 +17,16 @@
 #include "mac/mac.h"
 #include "queue/event_log_reader.h"
 #include "queue/queue_manager.h"
+#include "queue/submitter.h"
 #include "service/definition_loader.h"
 #include "service/message_json.h"
 #include "service/subscriber_hub.h"
 
 namespace acomms::service {
 
-// Facts about the running daemon that GetStatus reports.
-struct DaemonFacts {
+// What this daemon is and runs with, fixed at start: what GetStatus reports
+// about it.
+struct DaemonIdentity {
   std::string version;
   std::string data_dir;
   int64_t schema_version = 0;
@@ -34,19 +35,25 @@ struct DaemonFacts {
   uint32_t modem_id = 0;
 };
 
-// The link's parts, read and changed on the core thread only.
-struct LinkParts {
+// The acoustic link: the MAC that cycles the slots, the supervised modem
+// driver, and the LinkController that binds them to the queues (what Goby
+// calls a binding). Read and changed on the core thread only.
+struct Link {
   mac::Mac& mac;
   link::DriverSupervisor& driver;
   link::LinkController& controller;
 };
 
-// What the service works on. Everything must outlive it.
-struct ServiceParts {
+// The node the service operates on: its layers, each owned by the daemon
+// and outliving the service.
+struct Node {
   dccl::Codec& codec;
   queue::QueueManager& queues;
+  // The way in for a client's message, and the lock that keeps the codec's
+  // types and the set of queues stable while a call reads them.
+  queue::Submitter& submitter;
   core::EventLoop& core;
-  LinkParts link;
+  Link link;
   DefinitionLoader& definitions;
   queue::EventLogReader& events;
   SubscriberHub& subscribers;
@@ -57,7 +64,7 @@ struct ServiceParts {
 // wait cost more CPU in thread hand-offs than the Submit itself.
 class AcommsService final : public v1::Acomms::WithCallbackMethod_Submit<v1::Acomms::Service> {
  public:
-  AcommsService(DaemonFacts facts, ServiceParts parts);
+  AcommsService(DaemonIdentity identity, Node node);
 
   grpc::Status GetStatus(grpc::ServerContext*, const v1::GetStatusRequest*, v1::Status*) override;
 
@@ -85,27 +92,16 @@ class AcommsService final : public v1::Acomms::WithCallbackMethod_Submit<v1::Aco
 
  private:
   // Parses a request's message (payload or JSON) into a new message of
-  // `type`. Caller holds definitions_ (shared).
+  // `type`. Caller holds types_stable().
   grpc::Status parse_message(const std::string& type, const std::string* payload, const std::string* json,
                              std::unique_ptr<google::protobuf::Message>* out) const;
-  // Submit up to the journal: checks, parses, encodes and hands the message
-  // to the journal, whose commit completes `reactor`. Not OK: nothing was
-  // journaled and the call is the caller's to finish.
-  grpc::Status submit_to_journal(const v1::SubmitRequest& request, v1::SubmitResponse* response,
-                                 grpc::ServerUnaryReactor* reactor);
-  // On the core thread, once the message is durable: queues it and
-  // finishes the call.
-  void accept_submitted(queue::QueuedMessage queued, v1::SubmitResponse* response,
-                        grpc::ServerUnaryReactor* reactor);
+  // A Submit's ttl_s and message, parsed.
+  grpc::Status parse_submitted(const v1::SubmitRequest& request,
+                               std::unique_ptr<google::protobuf::Message>* out) const;
 
-  DaemonFacts facts_;
-  ServiceParts parts_;
+  DaemonIdentity identity_;
+  Node node_;
   std::chrono::steady_clock::time_point started_;
-  // The codec's types and the set of queues only grow, in LoadDefinitions,
-  // which holds this exclusively; every call that encodes, decodes or looks
-  // types up holds it shared. (The core thread's own codec use is safe
-  // because LoadDefinitions runs the load on the core thread.)
-  mutable std::shared_mutex definitions_;
   mutable JsonReader json_reader_;
 };
 

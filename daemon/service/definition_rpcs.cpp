@@ -66,10 +66,10 @@ grpc::Status AcommsService::LoadDefinitions(grpc::ServerContext*, const v1::Load
   }
   // No Submit may look a type up while types are added, and the core
   // thread (which decodes received frames) runs the load itself.
-  std::unique_lock lock(definitions_);
+  auto changing = node_.submitter.types_changing();
   try {
     std::vector<const dccl::TypeInfo*> types =
-        parts_.core.call([&] { return parts_.definitions.load(*request); });
+        node_.core.call([&] { return node_.definitions.load(*request); });
     for (const dccl::TypeInfo* info : types) fill_type(*info, true, false, response->add_types());
   } catch (const DefinitionError& e) {
     return to_status(e);
@@ -79,15 +79,15 @@ grpc::Status AcommsService::LoadDefinitions(grpc::ServerContext*, const v1::Load
 
 grpc::Status AcommsService::ListTypes(grpc::ServerContext*, const v1::ListTypesRequest* request,
                                       v1::ListTypesResponse* response) {
-  std::shared_lock lock(definitions_);
+  auto stable = node_.submitter.types_stable();
   if (request->types().empty()) {
-    for (const dccl::TypeInfo* info : parts_.codec.types()) {
+    for (const dccl::TypeInfo* info : node_.codec.types()) {
       fill_type(*info, request->fields(), request->descriptors(), response->add_types());
     }
     return grpc::Status::OK;
   }
   for (const std::string& name : request->types()) {
-    const dccl::TypeInfo* info = parts_.codec.find_type(name);
+    const dccl::TypeInfo* info = node_.codec.find_type(name);
     if (info == nullptr) return type_not_loaded(name);
     fill_type(*info, request->fields(), request->descriptors(), response->add_types());
   }

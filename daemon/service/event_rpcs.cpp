@@ -30,7 +30,7 @@ grpc::Status AcommsService::Events(grpc::ServerContext*, const v1::EventsRequest
   query.limit = limit;
   queue::EventPage page;
   try {
-    page = parts_.events.query(query);
+    page = node_.events.query(query);
   } catch (const std::invalid_argument& e) {
     return {StatusCode::INVALID_ARGUMENT, e.what()};
   } catch (const std::exception& e) {

@@ -15,6 +15,8 @@
 #include <stdexcept>
 
 #include "acomms/v1/acomms.grpc.pb.h"
+#include "service/tls_refusal_log.h"
+#include "core/pem_files.h"
 
 namespace acomms::service {
 namespace {
@@ -37,7 +39,31 @@ void clear_stale_socket(const std::string& path) {
   ::unlink(path.c_str());
 }
 
+std::shared_ptr<grpc::ServerCredentials> tcp_credentials(const Endpoints& endpoints,
+                                                        std::unique_ptr<TlsCertificates>& tls) {
+  if (!endpoints.tls) {
+    spdlog::warn(
+        "grpc: TCP {} is plaintext with no authentication (grpc.insecure_tcp: true): anyone who "
+        "can reach it can submit, cancel and flush; configure grpc.tls instead",
+        endpoints.tcp_listen);
+    return grpc::InsecureServerCredentials();
+  }
+  try {
+    tls = std::make_unique<TlsCertificates>(*endpoints.tls);
+  } catch (const core::PemFileError& e) {
+    throw std::runtime_error(std::string("cannot serve TLS on ") + endpoints.tcp_listen + ": " + e.what());
+  }
+  log_tls_refusals(*endpoints.tls);
+  return tls->credentials();
+}
+
 }  // namespace
+
+Endpoints endpoints_of(const v1::GrpcConfig& grpc) {
+  Endpoints endpoints{grpc.unix_socket(), grpc.tcp_listen(), std::nullopt};
+  if (grpc.has_tls()) endpoints.tls = grpc.tls();
+  return endpoints;
+}
 
 GrpcServer::GrpcServer(const Endpoints& endpoints, const std::vector<grpc::Service*>& services)
     : unix_socket_(endpoints.unix_socket) {
@@ -63,7 +89,7 @@ GrpcServer::GrpcServer(const Endpoints& endpoints, const std::vector<grpc::Servi
   builder.AddListeningPort("unix:" + unix_socket_, grpc::InsecureServerCredentials(), &unix_port);
   int tcp_port = 0;
   if (!endpoints.tcp_listen.empty()) {
-    builder.AddListeningPort(endpoints.tcp_listen, grpc::InsecureServerCredentials(), &tcp_port);
+    builder.AddListeningPort(endpoints.tcp_listen, tcp_credentials(endpoints, tls_), &tcp_port);
   }
   for (grpc::Service* service : services) builder.RegisterService(service);
   // The synchronous calls (all but Submit, a callback method that never
@@ -90,8 +116,31 @@ GrpcServer::GrpcServer(const Endpoints& endpoints, const std::vector<grpc::Servi
   ::chmod(unix_socket_.c_str(), 0660);
 
   service_names_ = {v1::Acomms::service_full_name()};
-  spdlog::info("grpc: listening on unix:{}{}", unix_socket_,
-               endpoints.tcp_listen.empty() ? "" : " and tcp " + endpoints.tcp_listen);
+  std::string tcp;
+  if (!endpoints.tcp_listen.empty()) {
+    tcp = " and tcp " + endpoints.tcp_listen;
+    if (tls_) {
+      tcp += (tls_->mutual() ? " (mutual TLS, clients from " + endpoints.tls->client_ca_file() + "; "
+                             : " (TLS; ") +
+             "certificate " + tls_->description() + ")";
+    } else {
+      tcp += " (plaintext)";
+    }
+  }
+  spdlog::info("grpc: listening on unix:{}{}", unix_socket_, tcp);
+}
+
+void GrpcServer::reload_tls() {
+  if (!tls_) {
+    spdlog::info("grpc: reload: no TLS certificates to re-read (grpc.tls is not set)");
+    return;
+  }
+  try {
+    tls_->reload();
+    spdlog::info("grpc: reloaded TLS certificates for new connections: {}", tls_->description());
+  } catch (const core::PemFileError& e) {
+    spdlog::error("grpc: reload failed, still serving the previous TLS certificates: {}", e.what());
+  }
 }
 
 GrpcServer::~GrpcServer() { shutdown(std::chrono::milliseconds(0)); }

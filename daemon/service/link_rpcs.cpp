@@ -19,42 +19,42 @@ v1::MacSlot to_proto(const mac::Slot& slot) {
 
 grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatusRequest*,
                                        v1::LinkStatusResponse* response) {
-  response->set_modem_id(facts_.modem_id);
-  response->set_mac(facts_.mac.empty() ? "none" : facts_.mac);
-  parts_.core.call([&] {
-    const link::DriverStatus& status = parts_.link.driver.status();
+  response->set_modem_id(identity_.modem_id);
+  response->set_mac(identity_.mac.empty() ? "none" : identity_.mac);
+  node_.core.call([&] {
+    const link::DriverStatus& status = node_.link.driver.status();
     v1::DriverStatus* driver = response->mutable_driver();
-    driver->set_name(facts_.driver);
+    driver->set_name(identity_.driver);
     driver->set_state(link::to_string(status.state));
     driver->set_summary(link::describe(status, std::chrono::system_clock::now()));
     driver->set_last_error(status.last_error);
     driver->set_failures(status.failures);
     driver->set_starts(status.starts);
 
-    const mac::Cycle& cycle = parts_.link.mac.cycle();
+    const mac::Cycle& cycle = node_.link.mac.cycle();
     std::set<int32_t> known;
     for (const mac::Slot& slot : cycle) {
       *response->add_cycle() = to_proto(slot);
       if (slot.src > 0) known.insert(slot.src);
     }
     response->set_cycle_seconds(cycle.empty() ? 0 : mac::cycle_seconds(cycle));
-    if (auto* discovery = dynamic_cast<const mac::AutoDiscoveryMac*>(&parts_.link.mac)) {
+    if (auto* discovery = dynamic_cast<const mac::AutoDiscoveryMac*>(&node_.link.mac)) {
       known.clear();
       for (int32_t id : discovery->known_ids()) known.insert(id);
       response->set_blank_rule(mac::blank_rule_name(discovery->blank_rule()));
     }
     for (int32_t id : known) response->add_known_nodes(id);
 
-    const link::LinkStats& stats = parts_.link.controller.stats();
+    const link::LinkStats& stats = node_.link.controller.stats();
     v1::LinkCounters* counters = response->mutable_counters();
     counters->set_transmissions_sent(stats.transmissions_sent);
     counters->set_transmissions_failed(stats.transmissions_failed);
     counters->set_data_received(stats.data_received);
     counters->set_acks_received(stats.acks_received);
     counters->set_messages_delivered(stats.messages_delivered);
-    counters->set_duplicates_dropped(parts_.queues.duplicates());
-    counters->set_malformed_frames(parts_.queues.malformed_frames());
-    const link::DriverCounters lost = parts_.link.driver.counters();
+    counters->set_duplicates_dropped(node_.queues.duplicates());
+    counters->set_malformed_frames(node_.queues.malformed_frames());
+    const link::DriverCounters lost = node_.link.driver.counters();
     counters->set_lost_half_duplex(lost.lost_half_duplex);
     counters->set_lost_collision(lost.lost_collision);
   });
@@ -63,7 +63,7 @@ grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatu
 
 grpc::Status AcommsService::SetCycle(grpc::ServerContext*, const v1::SetCycleRequest* request,
                                      v1::SetCycleResponse* response) {
-  const std::string& name = facts_.mac;
+  const std::string& name = identity_.mac;
   if (name.empty() || name == "none") {
     return {grpc::StatusCode::FAILED_PRECONDITION,
             "this node's MAC is \"none\": it never starts a transmission, so it has no cycle to change "
@@ -82,7 +82,7 @@ grpc::Status AcommsService::SetCycle(grpc::ServerContext*, const v1::SetCycleReq
   mac::Cycle cycle = mac::cycle_from_config(config);
   try {
     mac::check_cycle(cycle, "slot");
-    parts_.core.call([&] { parts_.link.mac.set_cycle(cycle); });
+    node_.core.call([&] { node_.link.mac.set_cycle(cycle); });
   } catch (const std::invalid_argument& e) {
     return {grpc::StatusCode::INVALID_ARGUMENT, e.what()};
   }

@@ -13,19 +13,31 @@ namespace {
 // daemon parse megabytes.
 constexpr size_t kMaxMessageBytes = 64 * 1024;
 
+grpc::Status submit_status(const queue::SubmitResult& result) {
+  using Error = queue::SubmitResult::Error;
+  switch (result.error) {
+    case Error::kNone: return grpc::Status::OK;
+    case Error::kUnknownType: return {grpc::StatusCode::NOT_FOUND, result.text};
+    case Error::kQueueFull: return {grpc::StatusCode::RESOURCE_EXHAUSTED, result.text};
+    case Error::kInvalidMessage: return {grpc::StatusCode::INVALID_ARGUMENT, result.text};
+    case Error::kStoreUnavailable: break;
+  }
+  return {grpc::StatusCode::UNAVAILABLE, result.text};
+}
+
 }  // namespace
 
 grpc::Status AcommsService::parse_message(const std::string& type, const std::string* payload,
                                           const std::string* json,
                                           std::unique_ptr<google::protobuf::Message>* out) const {
   using grpc::StatusCode;
-  if (parts_.codec.find_type(type) == nullptr) {
+  if (node_.codec.find_type(type) == nullptr) {
     return type_not_loaded(type);
   }
   if ((payload && payload->size() > kMaxMessageBytes) || (json && json->size() > kMaxMessageBytes)) {
     return {StatusCode::INVALID_ARGUMENT, "message is larger than " + std::to_string(kMaxMessageBytes) + " bytes"};
   }
-  std::unique_ptr<google::protobuf::Message> message = parts_.codec.new_message(type);
+  std::unique_ptr<google::protobuf::Message> message = node_.codec.new_message(type);
   if (payload) {
     if (!message->ParsePartialFromString(*payload)) {
       return {StatusCode::INVALID_ARGUMENT, "payload is not a serialized " + type};
@@ -42,83 +54,41 @@ grpc::Status AcommsService::parse_message(const std::string& type, const std::st
   return grpc::Status::OK;
 }
 
+grpc::Status AcommsService::parse_submitted(const v1::SubmitRequest& request,
+                                            std::unique_ptr<google::protobuf::Message>* out) const {
+  if (!(request.ttl_s() >= 0) || !std::isfinite(request.ttl_s())) {
+    return {grpc::StatusCode::INVALID_ARGUMENT, "ttl_s must be 0 (the queue's) or a positive number of seconds"};
+  }
+  // Released before the submit, which takes it again: types only grow, so
+  // the parsed message's type is still there.
+  auto stable = node_.submitter.types_stable();
+  return parse_message(
+      request.type(), request.message_case() == v1::SubmitRequest::kPayload ? &request.payload() : nullptr,
+      request.message_case() == v1::SubmitRequest::kJson ? &request.json() : nullptr, out);
+}
+
 grpc::ServerUnaryReactor* AcommsService::Submit(grpc::CallbackServerContext* context,
                                                 const v1::SubmitRequest* request, v1::SubmitResponse* response) {
-  // The call ends in one of three places: here when the request is refused
-  // before anything is stored; on the store writer's thread when the
-  // message could not be stored; on the core thread once it is queued (or
-  // refused by a full queue). gRPC keeps request and response alive until
-  // Finish.
+  // The answer comes once the message is durable and queued, or refused,
+  // on whichever thread that is known (queue/submitter.h); gRPC keeps
+  // request and response alive until Finish.
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
-  grpc::Status refused = submit_to_journal(*request, response, reactor);
-  if (!refused.ok()) reactor->Finish(refused);
-  return reactor;
-}
-
-grpc::Status AcommsService::submit_to_journal(const v1::SubmitRequest& request, v1::SubmitResponse* response,
-                                              grpc::ServerUnaryReactor* reactor) {
-  using grpc::StatusCode;
-  if (!(request.ttl_s() >= 0) || !std::isfinite(request.ttl_s())) {
-    return {StatusCode::INVALID_ARGUMENT, "ttl_s must be 0 (the queue's) or a positive number of seconds"};
-  }
-  std::shared_lock lock(definitions_);
   std::unique_ptr<google::protobuf::Message> message;
-  grpc::Status parsed = parse_message(
-      request.type(), request.message_case() == v1::SubmitRequest::kPayload ? &request.payload() : nullptr,
-      request.message_case() == v1::SubmitRequest::kJson ? &request.json() : nullptr, &message);
-  if (!parsed.ok()) return parsed;
-  try {
-    // Encoding happens here, on this gRPC thread; the write is shared with
-    // the other Submits of the same commit, and nothing waits for the disk.
-    parts_.queues.journal_new(
-        *message, request.ttl_s(),
-        [this, response, reactor](queue::QueuedMessage queued, std::exception_ptr error) {
-          // On the store writer's thread: hand on quickly, never wait.
-          if (error) {
-            try {
-              std::rethrow_exception(error);
-            } catch (const std::exception& e) {
-              reactor->Finish({StatusCode::UNAVAILABLE, std::string("store: ") + e.what()});
-            }
-            return;
-          }
-          auto durable = std::make_shared<queue::QueuedMessage>(std::move(queued));
-          parts_.core.post([this, durable, response, reactor] {
-            accept_submitted(std::move(*durable), response, reactor);
-          });
-        });
-  } catch (const queue::UnknownTypeError& e) {
-    return {StatusCode::NOT_FOUND, e.what()};
-  } catch (const queue::QueueFullError& e) {
-    return {StatusCode::RESOURCE_EXHAUSTED, e.what()};
-  } catch (const dccl::Error& e) {
-    return {StatusCode::INVALID_ARGUMENT, e.what()};
-  } catch (const std::exception& e) {
-    // The store writer refused the write: the daemon is stopping.
-    return {StatusCode::UNAVAILABLE, std::string("store: ") + e.what()};
+  grpc::Status parsed = parse_submitted(*request, &message);
+  if (!parsed.ok()) {
+    reactor->Finish(parsed);
+    return reactor;
   }
-  return grpc::Status::OK;
-}
-
-void AcommsService::accept_submitted(queue::QueuedMessage queued, v1::SubmitResponse* response,
-                                     grpc::ServerUnaryReactor* reactor) {
-  const int64_t id = queued.record.id;
-  const std::string type = queued.record.type;
-  if (!parts_.queues.accept(std::move(queued))) {
-    // Filled while this message was being stored: it was stored, and
-    // accept() dropped it again with an event.
-    const queue::Queue* queue = parts_.queues.find_queue(type);
-    reactor->Finish({grpc::StatusCode::RESOURCE_EXHAUSTED,
-                     queue ? queue::queue_full_text(*queue) : "queue " + type + " is full"});
-    return;
-  }
-  response->set_message_id(id);
-  reactor->Finish(grpc::Status::OK);
+  node_.submitter.submit(*message, request->ttl_s(), [response, reactor](queue::SubmitResult result) {
+    if (result.ok()) response->set_message_id(result.message_id);
+    reactor->Finish(submit_status(result));
+  });
+  return reactor;
 }
 
 grpc::Status AcommsService::Encode(grpc::ServerContext*, const v1::EncodeRequest* request,
                                    v1::EncodeResponse* response) {
-  std::shared_lock lock(definitions_);
+  auto stable = node_.submitter.types_stable();
   std::unique_ptr<google::protobuf::Message> message;
   grpc::Status parsed = parse_message(
       request->type(), request->message_case() == v1::EncodeRequest::kPayload ? &request->payload() : nullptr,
@@ -129,7 +99,7 @@ grpc::Status AcommsService::Encode(grpc::ServerContext*, const v1::EncodeRequest
             request->type() + ": required field(s) missing: " + message->InitializationErrorString()};
   }
   try {
-    response->set_encoded(parts_.codec.encode(*message));
+    response->set_encoded(node_.codec.encode(*message));
   } catch (const dccl::Error& e) {
     return {grpc::StatusCode::INVALID_ARGUMENT, e.what()};
   }
@@ -143,16 +113,16 @@ grpc::Status AcommsService::Decode(grpc::ServerContext*, const v1::DecodeRequest
             "encoded is larger than " + std::to_string(kMaxMessageBytes) + " bytes"};
   }
   if (request->encoded().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "encoded is empty"};
-  std::shared_lock lock(definitions_);
+  auto stable = node_.submitter.types_stable();
   try {
     std::vector<std::unique_ptr<google::protobuf::Message>> messages;
     if (request->type().empty()) {
-      messages = parts_.codec.decode(request->encoded());
+      messages = node_.codec.decode(request->encoded());
     } else {
-      if (parts_.codec.find_type(request->type()) == nullptr) {
+      if (node_.codec.find_type(request->type()) == nullptr) {
         return type_not_loaded(request->type());
       }
-      messages.push_back(parts_.codec.decode_as(request->type(), request->encoded()));
+      messages.push_back(node_.codec.decode_as(request->type(), request->encoded()));
     }
     for (const auto& message : messages) {
       v1::DecodedMessage* out = response->add_messages();

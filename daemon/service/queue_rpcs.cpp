@@ -25,8 +25,8 @@ grpc::Status AcommsService::ListQueued(grpc::ServerContext*, const v1::ListQueue
                                        v1::ListQueuedResponse* response) {
   size_t limit = 0;
   if (grpc::Status refused = page_limit(request->limit(), &limit); !refused.ok()) return refused;
-  std::shared_lock lock(definitions_);
-  if (!request->type().empty() && parts_.queues.find_queue(request->type()) == nullptr) {
+  auto stable = node_.submitter.types_stable();
+  if (!request->type().empty() && node_.queues.find_queue(request->type()) == nullptr) {
     return no_queue(request->type());
   }
   // Copied on the core thread (cheap), turned into JSON here (not cheap),
@@ -36,9 +36,9 @@ grpc::Status AcommsService::ListQueued(grpc::ServerContext*, const v1::ListQueue
     std::string payload;
   };
   bool truncated = false;
-  std::vector<Row> rows = parts_.core.call([&] {
+  std::vector<Row> rows = node_.core.call([&] {
     std::vector<Row> out;
-    for (const queue::Queue* queue : parts_.queues.queues()) {
+    for (const queue::Queue* queue : node_.queues.queues()) {
       if (!request->type().empty() && queue->type() != request->type()) continue;
       for (const queue::QueuedMessage& queued : queue->messages()) {
         if (out.size() == limit) {
@@ -63,7 +63,7 @@ grpc::Status AcommsService::ListQueued(grpc::ServerContext*, const v1::ListQueue
     return out;
   });
   for (Row& row : rows) {
-    std::unique_ptr<google::protobuf::Message> message = parts_.codec.new_message(row.message.type());
+    std::unique_ptr<google::protobuf::Message> message = node_.codec.new_message(row.message.type());
     if (message->ParsePartialFromString(row.payload)) row.message.set_json(to_json(*message));
     *response->add_messages() = std::move(row.message);
   }
@@ -75,7 +75,7 @@ grpc::Status AcommsService::Cancel(grpc::ServerContext*, const v1::CancelRequest
   if (request->message_id() <= 0) return {grpc::StatusCode::INVALID_ARGUMENT, "message_id must be positive"};
   if (request->reason().size() > 1024) return {grpc::StatusCode::INVALID_ARGUMENT, "reason is longer than 1024 bytes"};
   std::string reason = request->reason().empty() ? "cancelled by client" : request->reason();
-  bool cancelled = parts_.core.call([&] { return parts_.queues.cancel(request->message_id(), reason); });
+  bool cancelled = node_.core.call([&] { return node_.queues.cancel(request->message_id(), reason); });
   if (!cancelled) {
     return {grpc::StatusCode::NOT_FOUND,
             "message " + std::to_string(request->message_id()) +
@@ -88,9 +88,9 @@ grpc::Status AcommsService::Cancel(grpc::ServerContext*, const v1::CancelRequest
 grpc::Status AcommsService::Flush(grpc::ServerContext*, const v1::FlushRequest* request,
                                   v1::FlushResponse* response) {
   if (request->type().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "name the type whose queue to flush"};
-  std::shared_lock lock(definitions_);
+  auto stable = node_.submitter.types_stable();
   try {
-    size_t removed = parts_.core.call([&] { return parts_.queues.flush(request->type(), "flushed by client"); });
+    size_t removed = node_.core.call([&] { return node_.queues.flush(request->type(), "flushed by client"); });
     response->set_removed(static_cast<uint32_t>(removed));
   } catch (const queue::UnknownTypeError&) {
     return no_queue(request->type());
@@ -100,18 +100,18 @@ grpc::Status AcommsService::Flush(grpc::ServerContext*, const v1::FlushRequest* 
 
 grpc::Status AcommsService::QueueStats(grpc::ServerContext*, const v1::QueueStatsRequest* request,
                                        v1::QueueStatsResponse* response) {
-  std::shared_lock lock(definitions_);
+  auto stable = node_.submitter.types_stable();
   for (const std::string& type : request->types()) {
-    if (parts_.queues.find_queue(type) == nullptr) {
+    if (node_.queues.find_queue(type) == nullptr) {
       return no_queue(type);
     }
   }
   std::set<std::string> wanted(request->types().begin(), request->types().end());
-  parts_.core.call([&] {
+  node_.core.call([&] {
     double now = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-    for (const queue::Queue* queue : parts_.queues.queues()) {
+    for (const queue::Queue* queue : node_.queues.queues()) {
       if (!wanted.empty() && wanted.count(queue->type()) == 0) continue;
-      const queue::QueueStats stats = parts_.queues.stats(queue->type());
+      const queue::QueueStats stats = node_.queues.stats(queue->type());
       v1::QueueStatsEntry* entry = response->add_queues();
       entry->set_type(queue->type());
       entry->set_dccl_id(queue->dccl_id());

@@ -14,16 +14,16 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
                                       grpc::ServerWriter<v1::ReceivedMessage>* writer) {
   Subscription::Filter filter;
   {
-    std::shared_lock lock(definitions_);
+    auto stable = node_.submitter.types_stable();
     for (const std::string& type : request->types()) {
-      if (parts_.codec.find_type(type) == nullptr) {
+      if (node_.codec.find_type(type) == nullptr) {
         return type_not_loaded(type);
       }
       filter.types.insert(type);
     }
   }
   if (request->has_src()) filter.src = request->src();
-  std::shared_ptr<Subscription> subscription = parts_.subscribers.subscribe(std::move(filter));
+  std::shared_ptr<Subscription> subscription = node_.subscribers.subscribe(std::move(filter));
   // Headers go out now, so the client knows it is subscribed before the
   // first message (tests and tools wait for this).
   writer->SendInitialMetadata();
@@ -38,7 +38,7 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
       break;
     }
   }
-  parts_.subscribers.unsubscribe(subscription);
+  node_.subscribers.unsubscribe(subscription);
   return result;
 }
 

@@ -11,6 +11,14 @@ wraps the calls a vehicle program needs most, with messages given as dicts
         for received in acomms.subscribe(["example.Status"]):
             print(received.src, received.message)
 
+Over TCP (a daemon with grpc.tcp_listen), the connection is TLS; with
+grpc.tls.client_ca_file set, the client shows its own certificate too:
+
+    acomms = AcommsClient("192.168.1.10:50051", tcp=True,
+                          ca_file="/etc/acommsd/tls/ca.pem",       # trusts the daemon
+                          cert_file="/etc/acommsd/tls/client.pem",  # mutual TLS only
+                          key_file="/etc/acommsd/tls/client.key")
+
 Every failed call raises AcommsError, which carries the gRPC status code
 (grpc.StatusCode.NOT_FOUND, INVALID_ARGUMENT, RESOURCE_EXHAUSTED,
 FAILED_PRECONDITION, UNAVAILABLE, ...) and the daemon's message, written for
@@ -168,28 +176,49 @@ def connect(socket: Optional[str] = None, timeout: Optional[float] = 10.0) -> "A
     return AcommsClient(socket, timeout)
 
 
-class AcommsClient:
-    """A connection to acommsd over its unix socket.
+def _read(path: Optional[str]) -> Optional[bytes]:
+    if not path:
+        return None
+    with open(path, "rb") as f:
+        return f.read()
 
-    socket:  the socket path; default $ACOMMSD_SOCKET or
-             /run/acommsd/acommsd.sock. A "host:port" with tcp=True talks TCP
-             to a daemon with grpc.tcp_listen set.
-    timeout: seconds each unary call may take (None: no limit).
+
+class AcommsClient:
+    """A connection to acommsd over its unix socket, or over TCP.
+
+    socket:    the socket path; default $ACOMMSD_SOCKET or
+               /run/acommsd/acommsd.sock. A "host:port" with tcp=True talks
+               TCP to a daemon with grpc.tcp_listen set.
+    timeout:   seconds each unary call may take (None: no limit).
+    TCP only (the default is TLS, as the daemon's):
+    ca_file:   PEM file of the CA that issued the daemon's certificate
+               (default: the system's CAs).
+    cert_file, key_file: this client's certificate and key, for a daemon
+               with grpc.tls.client_ca_file (mutual TLS).
+    insecure:  plaintext, only for a daemon with grpc.insecure_tcp: true.
     """
 
     def __init__(self, socket: Optional[str] = None, timeout: Optional[float] = 10.0,
-                 tcp: bool = False):
+                 tcp: bool = False, ca_file: Optional[str] = None, cert_file: Optional[str] = None,
+                 key_file: Optional[str] = None, insecure: bool = False):
         self.socket = socket or default_socket()
         self.timeout = timeout
         if tcp:
-            target = self.socket
+            if bool(cert_file) != bool(key_file):
+                raise ValueError("cert_file and key_file go together (mutual TLS)")
+            if insecure:
+                self._channel = grpc.insecure_channel(self.socket)
+            else:
+                credentials = grpc.ssl_channel_credentials(
+                    root_certificates=_read(ca_file), private_key=_read(key_file),
+                    certificate_chain=_read(cert_file))
+                self._channel = grpc.secure_channel(self.socket, credentials)
         else:
             if not os.path.exists(self.socket):
                 raise AcommsError(grpc.StatusCode.UNAVAILABLE,
                                   f"cannot reach acommsd at {self.socket}: no such socket "
                                   "(is acommsd running? see --socket / $ACOMMSD_SOCKET)")
-            target = "unix:" + os.path.abspath(self.socket)
-        self._channel = grpc.insecure_channel(target)
+            self._channel = grpc.insecure_channel("unix:" + os.path.abspath(self.socket))
         self.stub = pb_grpc.AcommsStub(self._channel)
 
     def close(self) -> None:

@@ -10,9 +10,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
+#include <stdexcept>
 
 #include "queue/queue_manager.h"
+#include "queue/submitter.h"
 
 namespace {
 
@@ -66,14 +69,20 @@ struct Fixture {
       entry->mutable_roles()->set_destination_field("dest");
     }
     manager = std::make_unique<queue::QueueManager>(codec, config, 1, clock, journal);
+    // This thread is the core: a submit is queued when submit() returns.
+    queue::Submitter submitter(*manager, [](std::function<void()> work) { work(); });
+    std::string refusal;
     for (int i = 1; i <= kTypes; ++i) {
       auto message = codec.new_message("bench.T" + std::to_string(i));
       for (int n = 0; n < kPerType; ++n) {
         google::protobuf::TextFormat::ParseFromString(
             "dest: 2 value: " + std::to_string(n) + " x: " + std::to_string(n % 997), message.get());
-        manager->accept(manager->journal_new(*message));
+        submitter.submit(*message, 0, [&refusal](const queue::SubmitResult& result) {
+          if (!result.ok()) refusal = result.text;
+        });
       }
     }
+    if (!refusal.empty()) throw std::runtime_error("bench fixture: a submit was refused: " + refusal);
   }
 
   dccl::Codec codec;

@@ -22,8 +22,11 @@
 //
 //   build/tests/bench/submit_bench [--duration 5] [--warmup 1] [--clients 1,8]
 //                                  [--idle 3] [--dir /tmp] [--json] [--no-rss] [--baseline]
-//                                  [--client-threads]
+//                                  [--client-threads] [--tcp plain|tls|mtls]
 //   --baseline also times GetStatus the same way: the gRPC round trip alone.
+//   --tcp: the clients use TCP on 127.0.0.1 instead of the unix socket:
+//   plaintext (grpc.insecure_tcp), TLS, or mutual TLS (certificates made
+//   with the openssl command): what TLS costs each call.
 
 #include <absl/synchronization/mutex.h>
 #include <grpcpp/grpcpp.h>
@@ -79,6 +82,14 @@ struct Options {
   bool baseline = false;
   // One thread per client, blocking calls, instead of one event thread.
   bool client_threads = false;
+  // "" (unix socket), "plain", "tls" or "mtls": TCP on 127.0.0.1.
+  std::string tcp;
+};
+
+// Where the clients connect, and how.
+struct Endpoint {
+  std::string target;
+  std::shared_ptr<grpc::ChannelCredentials> credentials;
 };
 
 constexpr const char* kBenchProto = R"(syntax = "proto2";
@@ -173,11 +184,11 @@ void summarise(const std::vector<std::vector<float>>& latencies, Row* out) {
 }
 
 // A channel of its own (its own connection) for each client.
-std::shared_ptr<grpc::Channel> client_channel(const std::string& socket) {
+std::shared_ptr<grpc::Channel> client_channel(const Endpoint& endpoint) {
   grpc::ChannelArguments args;
   // Channels with equal arguments would otherwise share one connection.
   args.SetInt(GRPC_ARG_USE_LOCAL_SUBCHANNEL_POOL, 1);
-  auto channel = grpc::CreateCustomChannel("unix:" + socket, grpc::InsecureChannelCredentials(), args);
+  auto channel = grpc::CreateCustomChannel(endpoint.target, endpoint.credentials, args);
   channel->WaitForConnected(std::chrono::system_clock::now() + 10s);
   return channel;
 }
@@ -204,7 +215,7 @@ double run_phases(std::atomic<int>& phase, const Options& options) {
 
 // `clients` threads, each with its own channel, submitting for warm-up then
 // for the measured duration. Only calls started in the measured window count.
-Row run_clients_on_threads(const Options& options, const std::string& socket, int clients, bool get_status) {
+Row run_clients_on_threads(const Options& options, const Endpoint& endpoint, int clients, bool get_status) {
   std::atomic<int> phase{kWarmup};
   std::atomic<int> connected{0};
   std::atomic<bool> go{false};
@@ -216,7 +227,7 @@ Row run_clients_on_threads(const Options& options, const std::string& socket, in
   std::vector<std::thread> threads;
   for (int c = 0; c < clients; ++c) {
     threads.emplace_back([&, c] {
-      auto stub = v1::Acomms::NewStub(client_channel(socket));
+      auto stub = v1::Acomms::NewStub(client_channel(endpoint));
       std::vector<float>& mine = latencies[c];
       mine.reserve(1 << 18);
       uint64_t failed = 0;
@@ -263,7 +274,7 @@ Row run_clients_on_threads(const Options& options, const std::string& socket, in
 
 // The same clients driven by one thread: each client's next call starts
 // from the completion of its last one.
-Row run_clients_on_events(const Options& options, const std::string& socket, int clients, bool get_status) {
+Row run_clients_on_events(const Options& options, const Endpoint& endpoint, int clients, bool get_status) {
   struct Client {
     int index = 0;
     std::unique_ptr<v1::Acomms::Stub> stub;
@@ -287,7 +298,7 @@ Row run_clients_on_events(const Options& options, const std::string& socket, int
   std::vector<Client> all(clients);
   for (int c = 0; c < clients; ++c) {
     all[c].index = c;
-    all[c].stub = v1::Acomms::NewStub(client_channel(socket));
+    all[c].stub = v1::Acomms::NewStub(client_channel(endpoint));
     all[c].request.set_type("bench.Status");
     all[c].latencies.reserve(1 << 18);
   }
@@ -358,6 +369,61 @@ struct ThroughputResult {
   bool ok = false;
 };
 
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A CA, a certificate for 127.0.0.1 and a client certificate in `dir`, made
+// with the openssl command; false (said on stderr) if it fails.
+bool make_certificates(const fs::path& dir) {
+  auto openssl = [&](std::vector<std::string> args) {
+    testing::RunResult result = testing::run("/usr/bin/openssl", args, (dir / "openssl").string());
+    if (result.exit_code != 0) std::fprintf(stderr, "submit_bench: openssl %s: %s", args[0].c_str(), result.err.c_str());
+    return result.exit_code == 0;
+  };
+  auto path = [&](const std::string& name) { return (dir / name).string(); };
+  write_file(dir / "server.ext", "subjectAltName=IP:127.0.0.1\n");
+  bool ok = true;
+  for (const char* name : {"ca", "server", "client"}) {
+    ok = ok && openssl({"genpkey", "-algorithm", "EC", "-pkeyopt", "ec_paramgen_curve:prime256v1", "-out",
+                        path(std::string(name) + ".key")});
+  }
+  ok = ok && openssl({"req", "-x509", "-new", "-key", path("ca.key"), "-out", path("ca.pem"), "-days", "2",
+                      "-subj", "/CN=bench CA"});
+  for (const char* name : {"server", "client"}) {
+    std::string n = name;
+    ok = ok && openssl({"req", "-new", "-key", path(n + ".key"), "-out", path(n + ".csr"), "-subj", "/CN=" + n});
+    ok = ok && openssl({"x509", "-req", "-in", path(n + ".csr"), "-CA", path("ca.pem"), "-CAkey", path("ca.key"),
+                        "-set_serial", n == "server" ? "7" : "8", "-days", "2", "-extfile", path("server.ext"),
+                        "-out", path(n + ".pem")});
+  }
+  return ok;
+}
+
+// The grpc { } settings for --tcp, and where the clients connect.
+std::string tcp_settings(const Options& options, const fs::path& dir, Endpoint& endpoint) {
+  std::string address = "127.0.0.1:" + std::to_string(testing::free_tcp_port());
+  endpoint.target = address;
+  if (options.tcp == "plain") {
+    endpoint.credentials = grpc::InsecureChannelCredentials();
+    return " tcp_listen: \"" + address + "\" insecure_tcp: true";
+  }
+  grpc::SslCredentialsOptions ssl;
+  ssl.pem_root_certs = read_text(dir / "ca.pem");
+  std::string settings = " tcp_listen: \"" + address + "\" tls { cert_file: \"" + (dir / "server.pem").string() +
+                         "\" key_file: \"" + (dir / "server.key").string() + "\"";
+  if (options.tcp == "mtls") {
+    ssl.pem_cert_chain = read_text(dir / "client.pem");
+    ssl.pem_private_key = read_text(dir / "client.key");
+    settings += " client_ca_file: \"" + (dir / "ca.pem").string() + "\"";
+  }
+  endpoint.credentials = grpc::SslCredentials(ssl);
+  return settings + " }";
+}
+
 ThroughputResult throughput(const Options& options) {
   ThroughputResult result;
   fs::path dir = fs::path(options.base_dir) / ("acomms_submit_bench_" + std::to_string(::getpid()));
@@ -365,9 +431,15 @@ ThroughputResult throughput(const Options& options) {
   fs::create_directories(dir);
   std::string socket = (dir / "api.sock").string();
   write_file(dir / "bench.proto", kBenchProto);
+  Endpoint endpoint{"unix:" + socket, grpc::InsecureChannelCredentials()};
+  std::string tcp;
+  if (!options.tcp.empty()) {
+    if (options.tcp != "plain" && !make_certificates(dir)) return result;
+    tcp = tcp_settings(options, dir, endpoint);
+  }
   std::ostringstream config;
   config << "data_dir: \"" << (dir / "data").string() << "\"\n"
-         << "grpc { unix_socket: \"" << socket << "\" }\n"
+         << "grpc { unix_socket: \"" << socket << "\"" << tcp << " }\n"
          << "driver { name: \"sim\" modem_id: 1 }\n"
          << "mac { name: \"none\" }\n"
          << "dccl { proto_files: \"" << (dir / "bench.proto").string() << "\" }\n"
@@ -394,9 +466,10 @@ ThroughputResult throughput(const Options& options) {
                 fdatasync_ms < 0 ? "null" : std::to_string(fdatasync_ms).c_str());
   } else {
     std::printf("acommsd durable Submit: data dir on %s (%s), %.1f s per row after %.1f s warm-up;\n"
-                "each client one connection with one call in flight, %s\n",
+                "each client one connection (%s) with one call in flight, %s\n",
                 options.base_dir.c_str(), filesystem_name(options.base_dir).c_str(), options.duration,
                 options.warmup,
+                options.tcp.empty() ? "unix socket" : ("TCP 127.0.0.1, " + options.tcp).c_str(),
                 options.client_threads ? "one thread per client (blocking calls)"
                                        : "all driven by one event thread");
     if (fdatasync_ms >= 0) {
@@ -413,8 +486,8 @@ ThroughputResult throughput(const Options& options) {
     for (int clients : options.clients) runs.emplace_back(true, clients);
   }
   for (auto [get_status, clients] : runs) {
-    Row row = options.client_threads ? run_clients_on_threads(options, socket, clients, get_status)
-                                     : run_clients_on_events(options, socket, clients, get_status);
+    Row row = options.client_threads ? run_clients_on_threads(options, endpoint, clients, get_status)
+                                     : run_clients_on_events(options, endpoint, clients, get_status);
     result.rows.push_back(row);
     failed = failed || row.failed > 0 || row.calls == 0;
     if (options.json) {
@@ -522,7 +595,7 @@ bool idle_memory(const Options& options) {
   std::fprintf(stderr,
                "usage: submit_bench [--duration S] [--warmup S] [--clients 1,8] [--idle S] [--dir D]\n"
                "                    [--acommsd PATH] [--example-config PATH] [--json] [--no-rss] [--baseline]\n"
-               "                    [--client-threads]\n");
+               "                    [--client-threads] [--tcp plain|tls|mtls]\n");
   std::exit(2);
 }
 
@@ -560,6 +633,10 @@ int main(int argc, char** argv) {
       else if (arg == "--no-rss") options.rss = false;
       else if (arg == "--baseline") options.baseline = true;
       else if (arg == "--client-threads") options.client_threads = true;
+      else if (arg == "--tcp") {
+        options.tcp = next();
+        if (options.tcp != "plain" && options.tcp != "tls" && options.tcp != "mtls") usage();
+      }
       else usage();
     } catch (const std::logic_error&) {
       usage();

@@ -72,8 +72,10 @@ std::unique_ptr<v1::Acomms::Stub> api(const std::string& socket) {
   return v1::Acomms::NewStub(grpc::CreateChannel("unix:" + socket, grpc::InsecureChannelCredentials()));
 }
 
-int free_udp_port() {
-  int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+namespace {
+
+int free_loopback_port(int type) {
+  int fd = ::socket(AF_INET, type, 0);
   sockaddr_in addr{};
   addr.sin_family = AF_INET;
   addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
@@ -84,5 +86,11 @@ int free_udp_port() {
   ::close(fd);
   return ntohs(addr.sin_port);
 }
+
+}  // namespace
+
+int free_udp_port() { return free_loopback_port(SOCK_DGRAM); }
+
+int free_tcp_port() { return free_loopback_port(SOCK_STREAM); }
 
 }  // namespace acomms::testing

@@ -45,4 +45,7 @@ std::unique_ptr<v1::Acomms::Stub> api(const std::string& socket);
 // A UDP port on 127.0.0.1 that was free a moment ago.
 int free_udp_port();
 
+// A TCP port on 127.0.0.1 that was free a moment ago.
+int free_tcp_port();
+
 }  // namespace acomms::testing

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sqlite3.h>
+#include <arpa/inet.h>
+#include <netinet/in.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
@@ -479,6 +481,34 @@ TEST_F(DaemonTest, SecondDaemonOnTheSameDataDirIsRefused) {
   EXPECT_NE(second->stderr_text().find("in use by another acommsd"), std::string::npos)
       << second->stderr_text();
   EXPECT_TRUE(first->running());
+}
+
+// A start that fails after the link is up (here the TCP port is taken)
+// stops the link on the core thread first: exit 1 with the reason, not an
+// abort on the core-thread assertion.
+TEST_F(DaemonTest, TakenTcpPortExitsWithTheReasonAfterTheLinkStarted) {
+  const int port = free_tcp_port();
+  int holder = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  ASSERT_GE(holder, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(holder, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+  ASSERT_EQ(::listen(holder, 1), 0);
+  std::ofstream(config_) << "data_dir: \"" << (dir_ / "data").string() << "\"\n"
+                         << "grpc { unix_socket: \"" << socket_ << "\" tcp_listen: \"127.0.0.1:" << port
+                         << "\" insecure_tcp: true }\n"
+                         << "driver { name: \"sim\" modem_id: 3 }\n"
+                         << "mac { name: \"fixed\" slot { src: 3 seconds: 10 } }\n";
+  auto daemon = start_daemon("port_taken");
+  std::optional<int> code = daemon->wait(15s);
+  ::close(holder);
+  ASSERT_TRUE(code.has_value()) << daemon->stderr_text();
+  EXPECT_EQ(*code, 1) << daemon->stderr_text();
+  EXPECT_NE(daemon->stderr_text().find(std::to_string(port)), std::string::npos) << daemon->stderr_text();
+  EXPECT_EQ(daemon->stderr_text().find("must run on the core thread"), std::string::npos)
+      << daemon->stderr_text();
 }
 
 }  // namespace

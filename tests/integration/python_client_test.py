@@ -44,6 +44,33 @@ ACOMMSD = None  # set from the command line
 GENERATED = None
 
 
+def free_tcp_port():
+    import socket
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def make_certificates(out_dir):
+    """A CA, a daemon certificate for 127.0.0.1 and a client certificate, made
+    with the openssl command."""
+    def openssl(*args):
+        subprocess.run(["openssl", *args], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+    def path(name):
+        return os.path.join(out_dir, name)
+
+    with open(path("server.ext"), "w") as f:
+        f.write("subjectAltName=IP:127.0.0.1\n")
+    for name in ("ca", "server", "client"):
+        openssl("genpkey", "-algorithm", "EC", "-pkeyopt", "ec_paramgen_curve:prime256v1", "-out", path(name + ".key"))
+    openssl("req", "-x509", "-new", "-key", path("ca.key"), "-out", path("ca.pem"), "-days", "2", "-subj", "/CN=py CA")
+    for name, ext in (("server", ["-extfile", path("server.ext")]), ("client", [])):
+        openssl("req", "-new", "-key", path(name + ".key"), "-out", path(name + ".csr"), "-subj", "/CN=" + name)
+        openssl("x509", "-req", "-in", path(name + ".csr"), "-CA", path("ca.pem"), "-CAkey", path("ca.key"),
+                "-set_serial", "7" if name == "server" else "8", "-days", "2", "-out", path(name + ".pem"), *ext)
+
+
 def generate_stubs(out_dir):
     """The API stubs, and the test's DCCL types as Python classes."""
     subprocess.run(["bash", os.path.join(EXAMPLES_DIR, "generate.sh"), out_dir], check=True,
@@ -68,11 +95,22 @@ class PythonClientTest(unittest.TestCase):
         # Short: unix socket paths are limited to 107 bytes.
         cls.dir = tempfile.mkdtemp(prefix="acomms-py-", dir="/tmp")
         cls.socket = os.path.join(cls.dir, "api.sock")
+        # Also mutual TLS on loopback TCP, for the TLS example.
+        make_certificates(cls.dir)
+        cls.tcp = f"127.0.0.1:{free_tcp_port()}"
         config = os.path.join(cls.dir, "acommsd.conf")
         with open(config, "w") as f:
             f.write(f"""data_dir: "{cls.dir}/data"
 log_level: INFO
-grpc {{ unix_socket: "{cls.socket}" }}
+grpc {{
+  unix_socket: "{cls.socket}"
+  tcp_listen: "{cls.tcp}"
+  tls {{
+    cert_file: "{cls.dir}/server.pem"
+    key_file: "{cls.dir}/server.key"
+    client_ca_file: "{cls.dir}/ca.pem"
+  }}
+}}
 driver {{ name: "sim" modem_id: 1 }}
 mac {{ name: "none" }}
 dccl {{
@@ -138,6 +176,15 @@ queue {{
         shutil.rmtree(cls.dir, ignore_errors=True)
         if code != 0:
             raise AssertionError(f"acommsd exited with {code} after SIGTERM:\n{log}")
+
+    def test_mutual_tls_client_with_a_certificate_is_served(self):
+        with AcommsClient(self.tcp, timeout=5, tcp=True, ca_file=f"{self.dir}/ca.pem",
+                          cert_file=f"{self.dir}/client.pem", key_file=f"{self.dir}/client.key") as tls:
+            self.assertEqual(tls.status().version, self.client.status().version)
+
+    def test_mutual_tls_client_without_a_certificate_is_refused(self):
+        with AcommsClient(self.tcp, timeout=5, tcp=True, ca_file=f"{self.dir}/ca.pem") as tls:
+            self.assertFails(grpc.StatusCode.UNAVAILABLE, tls.status)
 
     def assertFails(self, code, call, *args, contains=(), **kwargs):
         """`call` raises AcommsError with `code`, its message holding each of

@@ -11,6 +11,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <future>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -20,6 +21,7 @@
 #include "core/event_loop.h"
 #include "queue/queue_manager.h"
 #include "queue/sqlite_journal.h"
+#include "queue/submitter.h"
 #include "queue_crash_protocol.h"
 #include "store/group_commit_writer.h"
 #include "store/store.h"
@@ -44,8 +46,8 @@ void say(const std::string& line) {
   }
 }
 
-void submit_forever(const dccl::Codec& codec, queue::QueueManager& queues, core::EventLoop& core,
-                    queue::SqliteJournal& journal, int thread) {
+void submit_forever(const dccl::Codec& codec, queue::QueueManager& queues, queue::Submitter& submitter,
+                    core::EventLoop& core, queue::SqliteJournal& journal, int thread) {
   auto message = codec.new_message(crash::kType);
   const auto* type = message->GetDescriptor();
   const auto* reflection = message->GetReflection();
@@ -53,9 +55,12 @@ void submit_forever(const dccl::Codec& codec, queue::QueueManager& queues, core:
   reflection->SetString(message.get(), type->FindFieldByName("filler"), std::string("\0\xff", 2) + "filler");
   for (int64_t seq = 0;; ++seq) {
     reflection->SetInt64(message.get(), type->FindFieldByName("seq"), seq);
-    queue::QueuedMessage queued = queues.journal_new(*message);  // durable when it returns
-    int64_t id = queued.record.id;
-    if (!core.call([&] { return queues.accept(std::move(queued)); })) std::_Exit(4);
+    std::promise<queue::SubmitResult> answered;
+    std::future<queue::SubmitResult> answer = answered.get_future();
+    submitter.submit(*message, 0, [&answered](queue::SubmitResult result) { answered.set_value(std::move(result)); });
+    queue::SubmitResult result = answer.get();  // durable and queued once answered
+    if (!result.ok()) std::_Exit(4);
+    int64_t id = result.message_id;
     say("ok " + std::to_string(id) + " " + std::to_string(thread) + " " + std::to_string(seq));
     if (seq % crash::kRemoveEvery == 0) {
       if (!core.call([&] { return queues.cancel(id, "crash test"); })) std::_Exit(5);
@@ -91,11 +96,12 @@ int main(int argc, char** argv) {
   queue::QueueManager queues(codec, config, 1, clock, journal);
   queues.restore();
   core::EventLoop core;
+  queue::Submitter submitter(queues, [&core](std::function<void()> work) { core.post(std::move(work)); });
   core.start();
   say("ready");
   std::vector<std::thread> submitters;
   for (int t = 0; t < threads; ++t) {
-    submitters.emplace_back([&, t] { submit_forever(codec, queues, core, journal, t); });
+    submitters.emplace_back([&, t] { submit_forever(codec, queues, submitter, core, journal, t); });
   }
   for (auto& submitter : submitters) submitter.join();  // until killed
 }

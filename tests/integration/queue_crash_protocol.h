@@ -3,8 +3,9 @@
 // (queue_crash_test.cpp).
 //
 // Each submitting thread k submits crash.Test{thread: k, seq: 0, 1, ...} one
-// at a time through the daemon's own path (QueueManager::journal_new, then
-// accept on the core thread), so what a thread attempted is known from what
+// at a time through the daemon's own path (queue::Submitter::submit: encoded
+// on the thread, stored by the writer, queued on the core thread), waiting
+// for each answer, so what a thread attempted is known from what
 // it printed: everything up to the last printed seq, plus at most one more
 // in flight.
 //

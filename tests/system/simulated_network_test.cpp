@@ -18,6 +18,7 @@
 #include "mac/auto_discovery_mac.h"
 #include "mac/mac_factory.h"
 #include "queue/memory_journal.h"
+#include "queue/submitter.h"
 #include "sim/sim_channel.h"
 #include "sim/sim_driver.h"
 
@@ -68,7 +69,12 @@ struct Node {
     pb::TextFormat::ParseFromString("src: " + std::to_string(src) + " dest: " + std::to_string(dest) +
                                         " battery: " + std::to_string(battery),
                                     m.get());
-    ASSERT_TRUE(queues->accept(queues->journal_new(*m)));
+    // This thread is the core and MemoryJournal stores at once: answered
+    // before submit() returns.
+    queue::Submitter submitter(*queues, [](std::function<void()> work) { work(); });
+    queue::SubmitResult result;
+    submitter.submit(*m, 0, [&result](queue::SubmitResult r) { result = std::move(r); });
+    ASSERT_TRUE(result.ok()) << result.text;
   }
 
   dccl::Codec codec;

@@ -26,6 +26,7 @@
 #include "link/slot_check.h"
 #include "mac/mac_factory.h"
 #include "queue/memory_journal.h"
+#include "queue/submitter.h"
 #include "sim/sim_channel.h"
 #include "sim/sim_driver.h"
 
@@ -89,7 +90,12 @@ struct Node {
     pb::TextFormat::ParseFromString("src: " + std::to_string(src) + " dest: " + std::to_string(dest) +
                                         " seq: " + std::to_string(seq),
                                     m.get());
-    ASSERT_TRUE(queues->accept(queues->journal_new(*m)));
+    // This thread is the core and MemoryJournal stores at once: answered
+    // before submit() returns.
+    queue::Submitter submitter(*queues, [](std::function<void()> work) { work(); });
+    queue::SubmitResult result;
+    submitter.submit(*m, 0, [&result](queue::SubmitResult r) { result = std::move(r); });
+    ASSERT_TRUE(result.ok()) << result.text;
   }
 
   dccl::Codec codec;

@@ -27,7 +27,11 @@ TEST(ConfigLoader, GoodFileGivesItsSettings) {
   v1::Config config = parse_config(R"(
     data_dir: "/tmp/acomms"
     log_level: DEBUG
-    grpc { unix_socket: "/tmp/a.sock" tcp_listen: "127.0.0.1:50051" }
+    grpc {
+      unix_socket: "/tmp/a.sock"
+      tcp_listen: "127.0.0.1:50051"
+      tls { cert_file: "/etc/s.pem" key_file: "/etc/s.key" client_ca_file: "/etc/ca.pem" }
+    }
     driver { name: "udp" modem_id: 7 }
     mac { name: "polled" }
   )", "good.conf");
@@ -35,6 +39,10 @@ TEST(ConfigLoader, GoodFileGivesItsSettings) {
   EXPECT_EQ(config.log_level(), v1::DEBUG);
   EXPECT_EQ(config.grpc().unix_socket(), "/tmp/a.sock");
   EXPECT_EQ(config.grpc().tcp_listen(), "127.0.0.1:50051");
+  EXPECT_EQ(config.grpc().tls().cert_file(), "/etc/s.pem");
+  EXPECT_EQ(config.grpc().tls().key_file(), "/etc/s.key");
+  EXPECT_EQ(config.grpc().tls().client_ca_file(), "/etc/ca.pem");
+  EXPECT_FALSE(config.grpc().insecure_tcp());
   EXPECT_EQ(config.driver().name(), "udp");
   EXPECT_EQ(config.driver().modem_id(), 7u);
   EXPECT_EQ(config.mac().name(), "polled");
@@ -115,8 +123,47 @@ TEST(ConfigLoader, BadTcpAddressIsLocated) {
 }
 
 TEST(ConfigLoader, IPv6TcpAddressIsAccepted) {
-  EXPECT_EQ(parse_config("grpc { tcp_listen: \"[::1]:50051\" }", "v6").grpc().tcp_listen(),
+  EXPECT_EQ(parse_config("grpc { tcp_listen: \"[::1]:50051\" insecure_tcp: true }", "v6")
+                .grpc()
+                .tcp_listen(),
             "[::1]:50051");
+}
+
+// A config from before TLS (tcp_listen alone) must not start serving
+// plaintext to the network: the error names both ways forward.
+TEST(ConfigLoader, TcpWithoutTlsOrInsecureTcpNamesBothFixes) {
+  ConfigError e = parse_error("grpc {\n  tcp_listen: \"127.0.0.1:50051\"\n}\n");
+  EXPECT_EQ(e.line(), 2);
+  EXPECT_EQ(e.field(), "grpc.tcp_listen");
+  EXPECT_NE(e.problem().find("tls { cert_file:"), std::string::npos) << e.problem();
+  EXPECT_NE(e.problem().find("insecure_tcp: true"), std::string::npos) << e.problem();
+}
+
+TEST(ConfigLoader, PlaintextTcpIsAcceptedOnlyWhenAskedFor) {
+  v1::Config config =
+      parse_config("grpc { tcp_listen: \"127.0.0.1:50051\" insecure_tcp: true }", "plain");
+  EXPECT_TRUE(config.grpc().insecure_tcp());
+  EXPECT_FALSE(config.grpc().has_tls());
+}
+
+TEST(ConfigLoader, TlsNeedsCertAndKeyAndExcludesInsecureTcp) {
+  ConfigError no_key = parse_error(
+      "grpc {\n  tcp_listen: \"127.0.0.1:1\"\n  tls {\n    cert_file: \"/c.pem\"\n  }\n}\n");
+  EXPECT_EQ(no_key.field(), "grpc.tls.key_file");
+  EXPECT_NE(no_key.problem().find("required with tls"), std::string::npos) << no_key.problem();
+  ConfigError no_cert = parse_error("grpc { tcp_listen: \"127.0.0.1:1\" tls { key_file: \"/k\" } }");
+  EXPECT_EQ(no_cert.field(), "grpc.tls.cert_file");
+  ConfigError both = parse_error(
+      "grpc { tcp_listen: \"127.0.0.1:1\" insecure_tcp: true tls { cert_file: \"/c\" key_file: "
+      "\"/k\" } }");
+  EXPECT_EQ(both.field(), "grpc.insecure_tcp");
+  EXPECT_NE(both.problem().find("not both"), std::string::npos) << both.problem();
+}
+
+TEST(ConfigLoader, TlsWithoutTcpListenIsRefused) {
+  ConfigError e = parse_error("grpc { tls { cert_file: \"/c\" key_file: \"/k\" } }");
+  EXPECT_EQ(e.field(), "grpc.tls");
+  EXPECT_NE(e.problem().find("tcp_listen"), std::string::npos) << e.problem();
 }
 
 TEST(ConfigLoader, OverlongSocketPathIsRefused) {

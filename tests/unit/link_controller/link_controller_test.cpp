@@ -1,4 +1,4 @@
-// The glue between driver, MAC and queues: data requests filled from the
+// The LinkController, which binds driver, MAC and queues: data requests filled from the
 // queues, ACK frame indices mapped back to queue frames, received frames
 // split and delivered, slots handed to the driver.
 
@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "queue/memory_journal.h"
+#include "queue/submitter.h"
 
 namespace acomms::link {
 namespace {
@@ -108,10 +109,13 @@ class LinkControllerTest : public ::testing::Test {
   int64_t submit(const std::string& text) {
     auto m = codec_.new_message("lt.Status");
     pb::TextFormat::ParseFromString(text, m.get());
-    auto queued = queues_->journal_new(*m);
-    int64_t id = queued.record.id;
-    queues_->accept(std::move(queued));
-    return id;
+    // This thread is the core and MemoryJournal stores at once: answered
+    // before submit() returns.
+    queue::Submitter submitter(*queues_, [](std::function<void()> work) { work(); });
+    queue::SubmitResult result;
+    submitter.submit(*m, 0, [&result](queue::SubmitResult r) { result = std::move(r); });
+    EXPECT_TRUE(result.ok()) << result.text;
+    return result.message_id;
   }
 
   fs::path dir_;

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 
 #include "queue_manager_fixture.h"
 
@@ -81,8 +82,7 @@ class QueueAdditionsTest : public testing::QueueManagerFixture {
       entry->mutable_roles()->set_source_field("src");
       entry->mutable_roles()->set_destination_field("dest");
     }
-    manager_ = std::make_unique<QueueManager>(codec_, config, kOwnId, clock_, journal_);
-    return *manager_;
+    return install(std::make_unique<QueueManager>(codec_, config, kOwnId, clock_, journal_));
   }
 
   std::vector<std::string> queue_names() {
@@ -305,39 +305,47 @@ TEST_F(QueueAdditionsTest, AddedTypesTakeTheirConfiguredPolicyAndTheDefaults) {
 
 
 // The Submit path that does not wait for the disk: the checks and encoding
-// happen on the caller's thread (errors thrown there, nothing journaled),
-// the message comes back with its id once journaled.
-TEST_F(QueueAdditionsTest, JournalNewWithoutWaitingHandsBackTheJournaledMessage) {
-  QueueManager& queues = make();
-  auto m = codec_.new_message("qa.Status");
-  ASSERT_TRUE(pb::TextFormat::ParseFromString("dest: 3 value: 7", m.get()));
-  std::optional<QueuedMessage> journaled;
-  std::exception_ptr failure;
-  queues.journal_new(*m, 12, [&](QueuedMessage queued, std::exception_ptr error) {
-    journaled = std::move(queued);
-    failure = error;
-  });
-  ASSERT_TRUE(journaled);  // MemoryJournal reports at once
-  EXPECT_EQ(failure, nullptr);
-  EXPECT_GT(journaled->record.id, 0);
-  EXPECT_EQ(journaled->record.src, kOwnId);  // source role filled
-  EXPECT_EQ(journaled->record.dest, 3);
-  EXPECT_EQ(journaled->record.ttl_s, 12);
-  EXPECT_EQ(journaled->encoded, encode("qa.Status", "src: 1 dest: 3 value: 7"));
+// happen on the caller's thread (errors answered there, nothing journaled),
+// the answer is the message's id once it is journaled and queued.
+TEST_F(QueueAdditionsTest, SubmitFillsTheRolesAndAnswersWithTheIdOnceQueued) {
+  make();
+  SubmitResult result = submit_result("qa.Status", "dest: 3 value: 7", 12);
+  ASSERT_TRUE(result.ok()) << result.text;
+  EXPECT_GT(result.message_id, 0);
   EXPECT_EQ(journal_.stored(), 1u);
-  int64_t id = journaled->record.id;
-  EXPECT_TRUE(queues.accept(std::move(*journaled)));
-  EXPECT_EQ(queues.find_queue("qa.Status")->size(), 1u);
+  ASSERT_EQ(manager_->find_queue("qa.Status")->size(), 1u);
+  const QueuedMessage& queued = manager_->find_queue("qa.Status")->messages().front();
+  EXPECT_EQ(queued.record.id, result.message_id);
+  EXPECT_EQ(queued.record.src, kOwnId);  // source role filled
+  EXPECT_EQ(queued.record.dest, 3);
+  EXPECT_EQ(queued.record.ttl_s, 12);
+  EXPECT_EQ(queued.encoded, encode("qa.Status", "src: 1 dest: 3 value: 7"));
+  EXPECT_EQ(journal_.load().front().id, result.message_id);
 
   codec_.set_strict(true);  // as the daemon runs by default
-  auto bad = codec_.new_message("qa.Status");
-  ASSERT_TRUE(pb::TextFormat::ParseFromString("value: 5000", bad.get()));
-  bool called = false;
-  EXPECT_THROW(queues.journal_new(*bad, 0, [&](QueuedMessage, std::exception_ptr) { called = true; }),
-               dccl::Error);
-  EXPECT_FALSE(called);
+  SubmitResult bad = submit_result("qa.Status", "value: 5000");
+  EXPECT_EQ(bad.error, SubmitResult::Error::kInvalidMessage);
+  EXPECT_NE(bad.text.find("value"), std::string::npos) << bad.text;
+  EXPECT_EQ(bad.message_id, 0);
   EXPECT_EQ(journal_.stored(), 1u);
-  EXPECT_GT(submit("qa.Status", "value: 1"), id);
+  EXPECT_EQ(manager_->find_queue("qa.Status")->size(), 1u);
+  EXPECT_GT(submit("qa.Status", "value: 1"), result.message_id);
+}
+
+// MemoryJournal completes inside the submit; what the answer itself throws
+// there belongs to its caller and must not come back as a second answer.
+TEST_F(QueueAdditionsTest, SubmitAnswersOnceEvenWhenTheAnswerThrows) {
+  make();
+  int answers = 0;
+  EXPECT_THROW(submitter_->submit(*message("qa.Status", "value: 1"), 0,
+                                  [&answers](const SubmitResult& result) {
+                                    ++answers;
+                                    EXPECT_TRUE(result.ok()) << result.text;
+                                    throw std::runtime_error("the client went away");
+                                  }),
+               std::runtime_error);
+  EXPECT_EQ(answers, 1);
+  EXPECT_EQ(manager_->find_queue("qa.Status")->size(), 1u);
 }
 
 }  // namespace

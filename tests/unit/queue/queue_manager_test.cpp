@@ -82,8 +82,7 @@ class QueueTest : public testing::QueueManagerFixture {
         entry.mutable_roles()->set_timestamp_field("time");
       }
     }
-    manager_ = std::make_unique<QueueManager>(codec_, config, kOwnId, clock_, journal_);
-    return *manager_;
+    return install(std::make_unique<QueueManager>(codec_, config, kOwnId, clock_, journal_));
   }
 
   // Frames for one transmission; every test frame fits `room` bytes.
@@ -222,11 +221,16 @@ TEST_F(QueueTest, FullQueueDropsTheOldestOrRefusesTheNew) {
   int64_t command = submit("qt.Command", "value: 1");
   // Both stored while the queue still had room; it fills before the third
   // is accepted (concurrent Submits): that one is stored, then refused.
-  QueuedMessage second = manager_->journal_new(*message("qt.Command", "value: 2"));
-  QueuedMessage third = manager_->journal_new(*message("qt.Command", "value: 3"));
-  EXPECT_TRUE(manager_->accept(std::move(second)));
-  int64_t refused = third.record.id;
-  EXPECT_FALSE(manager_->accept(std::move(third)));
+  hold_core();
+  Answer second = submit_async("qt.Command", "value: 2");
+  Answer third = submit_async("qt.Command", "value: 3");
+  EXPECT_FALSE(second->has_value() || third->has_value()) << "answered before the core queued them";
+  int64_t refused = journal_.events().back().message_id;  // the third's "queued", as it was stored
+  run_core();
+  ASSERT_TRUE(second->has_value() && third->has_value());
+  EXPECT_TRUE((*second)->ok());
+  EXPECT_EQ((*third)->error, SubmitResult::Error::kQueueFull);
+  EXPECT_EQ((*third)->text, "queue qt.Command is full (max_queue 2) and refuses new messages");
   EXPECT_EQ(manager_->find_queue("qt.Command")->size(), 2u);
   bool logged = false;
   for (const auto& e : journal_.events()) {
@@ -243,12 +247,10 @@ TEST_F(QueueTest, FullQueueDropsTheOldestOrRefusesTheNew) {
   // Once the queue is full, a Submit is refused before it is stored: no id,
   // no event, nothing written.
   const size_t events = journal_.events().size();
-  try {
-    manager_->journal_new(*message("qt.Command", "value: 4"));
-    ADD_FAILURE() << "a full REFUSE_NEW queue took a new message";
-  } catch (const QueueFullError& e) {
-    EXPECT_STREQ(e.what(), "queue qt.Command is full (max_queue 2) and refuses new messages");
-  }
+  SubmitResult full = submit_result("qt.Command", "value: 4");
+  EXPECT_EQ(full.error, SubmitResult::Error::kQueueFull) << "a full REFUSE_NEW queue took a new message";
+  EXPECT_EQ(full.text, "queue qt.Command is full (max_queue 2) and refuses new messages");
+  EXPECT_EQ(full.message_id, 0);
   EXPECT_EQ(journal_.events().size(), events);
   EXPECT_EQ(journal_.stored(), 4u);
   EXPECT_EQ(manager_->stats("qt.Command").refused, 1u);
@@ -267,14 +269,7 @@ TEST_F(QueueTest, FullQueueDropsTheOldestOrRefusesTheNew) {
 // queue, whichever way it leaves.
 TEST_F(QueueTest, RefusalEndsWhenAMessageLeavesByExpiryOrSending) {
   make(R"(type { type: "qt.Command" policy { max_queue: 1 on_full: REFUSE_NEW ttl_s: 10 ack: true } })");
-  auto refused = [&] {
-    try {
-      manager_->journal_new(*message("qt.Command", "value: 9"));
-    } catch (const QueueFullError&) {
-      return true;
-    }
-    return false;
-  };
+  auto refused = [&] { return submit_result("qt.Command", "value: 9").error == SubmitResult::Error::kQueueFull; };
   submit("qt.Command", "value: 1");
   EXPECT_TRUE(refused());
   at(11);
@@ -434,7 +429,10 @@ TEST_F(QueueTest, PromiscuousKeepsEverything) {
 TEST_F(QueueTest, RolesAreFilledAtSubmit) {
   make();
   at(42);
-  QueuedMessage queued = manager_->journal_new(*message("qt.Status", "dest: 3 value: 1"));
+  int64_t id = submit("qt.Status", "dest: 3 value: 1");
+  ASSERT_EQ(manager_->find_queue("qt.Status")->size(), 1u);
+  const QueuedMessage& queued = manager_->find_queue("qt.Status")->messages().front();
+  EXPECT_EQ(queued.record.id, id);
   EXPECT_EQ(queued.record.src, kOwnId);
   EXPECT_EQ(queued.record.dest, 3);
   EXPECT_DOUBLE_EQ(queued.record.submitted_at, kStart + 42);

@@ -1,0 +1,152 @@
+#include "gram_command.h"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "comma_list.h"
+#include "gram/arrivals.h"
+#include "gram/beam_fan.h"
+#include "gram/bellhop_import.h"
+#include "gram/ctd_cast.h"
+#include "gram/profile_merge.h"
+#include "gram/transmission_loss.h"
+#include "gram_plot.h"
+#include "rpc_error.h"  // UsageError
+
+namespace acomms::cli {
+namespace {
+
+struct GramOptions {
+  std::string ctd, env, png, at;
+  double bin_m = 1.0;
+  double thin_mps = 0;
+  bool mackenzie = false;
+  unsigned threads = 0;
+};
+
+gram::Environment load_env(const std::string& path) {
+  auto imported = gram::import_bellhop_env_file(path);
+  for (const auto& warning : imported.warnings) std::cerr << "acommsctl: " << path << ": " << warning << "\n";
+  return std::move(imported.environment);
+}
+
+void report_beams(const gram::Environment& env, std::uint32_t used) {
+  if (env.beam_count() == 0) std::cerr << "acommsctl: " << used << " beams (automatic, spec §4.7)\n";
+}
+
+void run_ssp(const GramOptions& o) {
+  std::ifstream in(o.ctd, std::ios::binary);
+  if (!in) throw UsageError("cannot read " + o.ctd);
+  std::ostringstream text;
+  text << in.rdbuf();
+  const auto cast = gram::read_ctd_csv(text.str(), o.ctd);
+  gram::CtdProfileOptions options;
+  options.bin_m = o.bin_m;
+  options.equation = o.mackenzie ? gram::SoundSpeedEquation::kMackenzie : gram::SoundSpeedEquation::kUnesco;
+  std::cout << "depth_m,speed_mps\n";
+  std::cout.setf(std::ios::fixed);
+  auto profile = gram::sound_speed_from_ctd(cast, options);
+  if (o.thin_mps > 0) profile = gram::thin_profile(profile, o.thin_mps);
+  for (const auto& p : profile)
+    std::cout << std::setprecision(3) << p.depth_m() << "," << std::setprecision(4) << p.speed_mps() << "\n";
+}
+
+void run_tl(const GramOptions& o) {
+  const gram::Environment env = load_env(o.env);
+  const auto tl = gram::compute_transmission_loss(env, {o.threads});
+  report_beams(env, tl.beam_count);
+  if (!o.png.empty()) {
+    write_tl_png(o.png, tl, env);
+    return;
+  }
+  std::ostringstream out;
+  out << "range_m,depth_m,tl_db\n";
+  auto row = [&](double r, double z, double v) {
+    out << r << "," << z << ",";
+    if (std::isnan(v)) out << "";  // no value on the source axis
+    else if (std::isinf(v)) out << "inf";
+    else out << std::fixed << std::setprecision(3) << v << std::defaultfloat;
+    out << "\n";
+  };
+  if (tl.irregular) {
+    for (std::size_t i = 0; i < tl.tl_db.size(); ++i) row(tl.range_m[i], tl.depth_m[i], tl.tl_db[i]);
+  } else {
+    const std::size_t nr = tl.range_m.size();
+    for (std::size_t iz = 0; iz < tl.depth_m.size(); ++iz)
+      for (std::size_t ir = 0; ir < nr; ++ir) row(tl.range_m[ir], tl.depth_m[iz], tl.tl_db[iz * nr + ir]);
+  }
+  std::cout << out.str() << std::flush;
+}
+
+void run_arrivals(const GramOptions& o) {
+  const auto parts = split_commas(o.at);
+  double range = 0, depth = 0;
+  try {
+    if (parts.size() != 2) throw std::invalid_argument(o.at);
+    range = std::stod(parts[0]);
+    depth = std::stod(parts[1]);
+  } catch (const std::exception&) {
+    throw UsageError("--at \"" + o.at + "\": give RANGE_M,DEPTH_M, e.g. --at 2000,50");
+  }
+  gram::Environment env = load_env(o.env);
+  // Keep the file's beam count: the automatic rule depends on its receivers.
+  if (env.beam_count() == 0) env.set_beam_count(gram::beam_count(env));
+  env.clear_receiver_range_m();
+  env.clear_receiver_depth_m();
+  env.set_irregular_receivers(true);
+  env.add_receiver_range_m(range);
+  env.add_receiver_depth_m(depth);
+  const auto result = gram::compute_arrivals(env);
+  const auto& arrivals = result.at(0).arrivals;
+  std::cout << "delay_s,amplitude,phase_deg,launch_deg,arrival_deg,n_surface,n_bottom\n";
+  for (const auto& a : arrivals)
+    std::cout << std::fixed << std::setprecision(9) << a.delay_s << "," << std::scientific << std::setprecision(6)
+              << a.amplitude << "," << std::fixed << std::setprecision(4) << a.phase_deg << ","
+              << a.launch_deg << "," << a.arrival_deg << "," << a.top_bounces << "," << a.bottom_bounces << "\n";
+  const auto spread = gram::rms_delay_spread(arrivals, 60.0);
+  std::cout << std::defaultfloat << "# rms_delay_spread_s=" << spread.tau_rms_s << " over "
+            << spread.arrivals_used << " arrivals within 60 dB of the strongest\n";
+}
+
+}  // namespace
+
+CLI::App* add_gram_command(CLI::App& app) {
+  static GramOptions options;
+  CLI::App* gram = app.add_subcommand(
+      "gram", "The built-in acoustic model, offline: sound speed from a CTD cast, transmission loss "
+              "and arrivals from a BELLHOP-format environment (.env)");
+  gram->require_subcommand(1);
+
+  CLI::App* ssp = gram->add_subcommand(
+      "ssp", "Print the sound speed profile (depth_m,speed_mps) of a CTD cast: a CSV with columns "
+             "depth_m or p_dbar, t90_degc, s_psu or conductivity_ms_per_cm, lat_deg");
+  ssp->add_option("--ctd", options.ctd, "The cast (CSV)")->required()->type_name("FILE.csv");
+  ssp->add_option("--bin", options.bin_m, "Depth bin (m) for averaging")->check(CLI::PositiveNumber)->capture_default_str();
+  ssp->add_option("--thin", options.thin_mps,
+                  "Drop points that linear interpolation reproduces within this many m/s (0: keep all)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  ssp->add_flag("--mackenzie", options.mackenzie, "Mackenzie 1981 instead of UNESCO (Chen-Millero)");
+  ssp->callback([] { run_ssp(options); });
+
+  CLI::App* tl = gram->add_subcommand(
+      "tl", "Transmission loss on the environment's receiver grid as CSV range_m,depth_m,tl_db, or "
+            "a picture with --png");
+  tl->add_option("--env", options.env, "BELLHOP-format environment")->required()->type_name("FILE.env");
+  tl->add_option("--png", options.png, "Draw TL against range and depth, with the profile, to this PNG")->type_name("FILE");
+  tl->add_option("--threads", options.threads, "Threads (0: all cores); the result is the same")->capture_default_str();
+  tl->callback([] { run_tl(options); });
+
+  CLI::App* arrivals = gram->add_subcommand(
+      "arrivals", "The arrivals (delay, amplitude, phase, angles, bounces) at one receiver and their "
+                  "RMS delay spread");
+  arrivals->add_option("--env", options.env, "BELLHOP-format environment")->required()->type_name("FILE.env");
+  arrivals->add_option("--at", options.at, "The receiver: range (m) and depth (m)")->required()->type_name("RANGE_M,DEPTH_M");
+  arrivals->callback([] { run_arrivals(options); });
+  return gram;
+}
+
+}  // namespace acomms::cli

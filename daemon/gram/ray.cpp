@@ -1,0 +1,243 @@
+// Ray and dynamic ray tracing: shared/spec/gram.md §4.1–§4.6.
+#include "gram/ray.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "gram/reflection.h"
+
+namespace acomms::gram {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr std::size_t kMaxSteps = 2'000'000;    // guard against loops
+constexpr double kAmplitudeFloor = 1e-6;        // |ΠR| exp(−δ s) below this: stop
+
+enum class Target { kNone, kNode, kSurface, kBottom, kSegmentEnd };
+
+// Smallest positive arc length h with gap − rate h − ½ curvature h² = 0:
+// when a quantity `gap` away, approached at `rate` per metre of ray with
+// `curvature`, is reached; +∞ if never (it turns away first).
+double arc_to_offset(double gap, double rate, double curvature) {
+  const double a = 0.5 * curvature;
+  if (std::abs(a) * gap < 1e-12 * std::max(rate * rate, 1e-300)) {
+    return rate > 0 ? gap / rate : kInf;
+  }
+  const double disc = rate * rate + 4.0 * a * gap;
+  if (disc < 0) return kInf;
+  const double root = std::sqrt(disc);
+  // Roots of a h² + rate h − gap = 0, in a cancellation-free form.
+  const double q = -0.5 * (rate + std::copysign(root, rate));
+  double best = kInf;
+  for (double h : {q / a, q != 0 ? -gap / q : kInf})
+    if (h > 1e-9 && h < best) best = h;
+  return best;
+}
+
+}  // namespace
+
+RayTracer::RayTracer(const Medium& medium, double angle) : medium_(medium) {
+  const double zs = medium.source_depth();
+  layer_ = medium.ssp().layer_at(zs, std::sin(angle));
+  const double c = medium.ssp().at(zs, layer_).c;
+  point_.z = zs;
+  point_.c = c;
+  point_.xi = std::cos(angle) / c;
+  point_.zeta = std::sin(angle) / c;
+  point_.p = 1.0 / c;
+  segment_ = medium.segment_at(0.0);
+  here_ = medium.ssp().at(zs, layer_);
+  update_fade();
+}
+
+void RayTracer::update_fade() {
+  // |ΠR| exp(−δ s) < floor  ⇔  s > ln(|ΠR| / floor) / δ: one log per
+  // reflection instead of an exp per step.
+  const double magnitude = std::abs(point_.reflection);
+  const double delta = medium_.volume_attenuation_np_per_m();
+  if (magnitude < kAmplitudeFloor) faded_at_s_ = -kInf;
+  else if (delta > 0) faded_at_s_ = std::log(magnitude / kAmplitudeFloor) / delta;
+  else faded_at_s_ = kInf;
+}
+
+RayPoint RayTracer::integrate(const RayPoint& y, const SoundSpeedProfile::Value& at_y, double h) const {
+  // Midpoint (RK2) step of (r, z, ξ, ζ, τ, q, p); c_r = 0 (range-independent
+  // SSP). `at_y` is c and its derivatives at y, which every try shares.
+  struct Slope {
+    double dr, dz, dzeta, dtau, dq, dp;
+  };
+  auto slope = [](const RayPoint& at, const SoundSpeedProfile::Value& v) {
+    const double c2 = v.c * v.c;
+    const double cos_c = v.c * at.xi;
+    return Slope{v.c * at.xi, v.c * at.zeta, -v.cz / c2, 1.0 / v.c, v.c * at.p,
+                 -(v.czz * cos_c * cos_c / c2) * at.q};
+  };
+  const Slope k1 = slope(y, at_y);
+  RayPoint mid = y;
+  mid.z += 0.5 * h * k1.dz;
+  mid.zeta += 0.5 * h * k1.dzeta;
+  mid.q += 0.5 * h * k1.dq;
+  mid.p += 0.5 * h * k1.dp;
+  const Slope k2 = slope(mid, medium_.ssp().at(mid.z, layer_));
+  RayPoint out = y;
+  out.r += h * k2.dr;
+  out.z += h * k2.dz;
+  out.zeta += h * k2.dzeta;
+  out.tau += h * k2.dtau;
+  out.q += h * k2.dq;
+  out.p += h * k2.dp;
+  out.s += h;
+  return out;
+}
+
+double RayTracer::bottom_offset(const RayPoint& at) const {
+  return at.z - medium_.bottom_segments()[segment_].depth_at(at.r);
+}
+
+bool RayTracer::next() {
+  if (ended_) return false;
+  const auto& ssp = medium_.ssp();
+  const RayPoint& y = point_;
+  const SoundSpeedProfile::Value at_y = here_;
+  const double c = at_y.c;
+  const double tr = c * y.xi, tz = c * y.zeta;  // unit tangent
+  // The first boundary ahead along the (curving) ray decides the step. Depth
+  // crossings are predicted with the ray's curvature d²z/ds² = −(c_z/c) cos²θ,
+  // so a ray that turns before a node is not sent to it.
+  const double kappa = -(at_y.cz / c) * tr * tr;
+  double h = medium_.max_step();
+  Target target = Target::kNone;
+  std::size_t node = 0;
+  auto consider = [&](double distance, Target t) {
+    if (distance > 1e-9 && distance <= h) { h = distance; target = t; }
+  };
+  // A depth target out of reach within h, whatever the curvature, needs no root.
+  const double reach = h * (1.0 + 0.5 * std::abs(kappa) * h);
+  if (y.z - ssp.top() <= reach) consider(arc_to_offset(y.z - ssp.top(), -tz, -kappa), Target::kSurface);
+  if (ssp.lands_on_nodes()) {
+    // A node behind the ray matters only if the ray can turn within the step.
+    const bool can_rise = tz < 0 || tz + kappa * h < 0;
+    const bool can_sink = tz > 0 || tz + kappa * h > 0;
+    const double up = layer_ > 0 && can_rise ? arc_to_offset(y.z - ssp.node(layer_), -tz, -kappa) : kInf;
+    const double down = layer_ + 1 < ssp.layer_count() && can_sink
+                             ? arc_to_offset(ssp.node(layer_ + 1) - y.z, tz, kappa) : kInf;
+    node = up < down ? layer_ : layer_ + 1;
+    consider(std::min(up, down), Target::kNode);
+  }
+  const BottomSegment& seg = medium_.bottom_segments()[segment_];
+  const double bottom_gap = -bottom_offset(y);
+  if (bottom_gap <= reach * (1.0 + std::abs(seg.slope)))
+    consider(arc_to_offset(bottom_gap, tz - seg.slope * tr, kappa), Target::kBottom);
+  if (tr > 0 && std::isfinite(seg.r1)) consider((seg.r1 - y.r) / tr, Target::kSegmentEnd);
+  if (tr < 0 && std::isfinite(seg.r0)) consider((seg.r0 - y.r) / tr, Target::kSegmentEnd);
+
+  // Signed distance still to go to the target (negative: overshot). An
+  // overshoot is corrected by the secant ratio (≤ 3 tries, spec §4.3); a ray
+  // that falls short (it turned) is not moved onto the target.
+  const double approach = target == Target::kNode || target == Target::kSurface
+                              ? (tz + kappa * h > 0 ? 1.0 : -1.0)
+                              : 1.0;
+  auto offset = [&](const RayPoint& at) {
+    switch (target) {
+      case Target::kSurface: return (ssp.top() - at.z) * approach;
+      case Target::kNode: return (ssp.node(node) - at.z) * approach;
+      case Target::kBottom: return -bottom_offset(at);
+      case Target::kSegmentEnd: return ((tr > 0 ? seg.r1 : seg.r0) - at.r) * (tr > 0 ? 1.0 : -1.0);
+      default: return kInf;
+    }
+  };
+  constexpr double kLandingTolerance = 1e-4;  // m
+  RayPoint out = integrate(y, at_y, h);
+  for (int tries = 0; tries < 3 && target != Target::kNone && offset(out) < -kLandingTolerance; ++tries) {
+    const double before = offset(y), after = offset(out);
+    h *= before / (before - after);
+    out = integrate(y, at_y, h);
+  }
+  if (target != Target::kNone && std::abs(offset(out)) > kLandingTolerance) target = Target::kNone;
+  switch (target) {
+    case Target::kSurface: out.z = ssp.top(); break;
+    case Target::kNode: out.z = ssp.node(node); break;
+    case Target::kBottom: out.z = seg.depth_at(out.r); break;
+    case Target::kSegmentEnd: out.r = tr > 0 ? seg.r1 : seg.r0; break;
+    default: break;
+  }
+  if (out.z < ssp.top()) out.z = ssp.top();  // never above the surface
+  // Renormalise the slowness vector to 1/c at the new point.
+  const std::size_t layer_before_events = layer_;
+  const auto v = ssp.at(out.z, layer_);
+  const double norm = std::sqrt(out.xi * out.xi + out.zeta * out.zeta) * v.c;
+  out.xi /= norm;
+  out.zeta /= norm;
+  out.c = v.c;
+  if ((out.q > 0) != (y.q > 0) && y.q != 0) ++out.caustics;
+  else if (out.q == 0) ++out.caustics;
+  point_ = out;
+  // A spline profile is not landed on at nodes: follow the layer here.
+  if (!ssp.lands_on_nodes() &&
+      (out.z < ssp.node(layer_) || out.z > ssp.node(layer_ + 1)))
+    layer_ = ssp.layer_at(out.z, out.zeta);
+
+  switch (target) {
+    case Target::kNode: land_on_node(node); break;
+    case Target::kSurface: reflect(true); break;
+    case Target::kBottom: reflect(false); break;
+    case Target::kSegmentEnd: segment_ = tr > 0 ? segment_ + 1 : segment_ - 1; break;
+    default: break;
+  }
+  // c and its derivatives at the new point, for the next step (the layer,
+  // hence c_z, may have changed at a node or a reflection).
+  here_ = layer_ == layer_before_events ? v : ssp.at(point_.z, layer_);
+  if (point_.r > medium_.box_range() || point_.r < 0 || point_.z > medium_.box_depth() ||
+      point_.s > faded_at_s_ || ++steps_ >= kMaxSteps)
+    ended_ = true;
+  return true;
+}
+
+void RayTracer::land_on_node(std::size_t node) {
+  // c_z jumps at a c-linear node: p jumps, q is continuous (spec §4.4).
+  auto& y = point_;
+  const auto& ssp = medium_.ssp();
+  const double cz_before = ssp.at(y.z, layer_).cz;
+  layer_ = y.zeta > 0 ? node : node - 1;
+  const double cz_after = ssp.at(y.z, layer_).cz;
+  const double cos_t = y.c * y.xi, sin_t = y.c * y.zeta;
+  if (std::abs(sin_t) < 1e-12) return;  // turning exactly on the node: no crossing
+  y.p -= y.q * (cz_after - cz_before) * cos_t * cos_t / (y.c * y.c * sin_t);
+}
+
+void RayTracer::reflect(bool top) {
+  auto& y = point_;
+  const auto& ssp = medium_.ssp();
+  // Boundary tangent along increasing range and ν = (−τ_z, τ_r) (spec §4.4, §4.5).
+  double taur = 1.0, tauz = 0.0;
+  if (!top) {
+    const double slope = medium_.bottom_segments()[segment_].slope;
+    const double n = std::hypot(1.0, slope);
+    taur = 1.0 / n;
+    tauz = slope / n;
+  }
+  const double nur = -tauz, nuz = taur;
+  const double tr = y.c * y.xi, tz = y.c * y.zeta;
+  const double t_nu = tr * nur + tz * nuz;
+  const double grazing = std::asin(std::min(1.0, std::abs(t_nu)));
+  // p: the gradient term of a mirror medium, Δ∇c = −2 (∇c·ν) ν, incident direction.
+  const double cz = ssp.at(y.z, layer_).cz;
+  const double grad_nu = cz * nuz;
+  const double dgr = -2.0 * grad_nu * nur, dgz = -2.0 * grad_nu * nuz;
+  const double dg_n = dgr * (-tz) + dgz * tr;  // Δ∇c · n̂, n̂ = (−sin θ, cos θ)
+  const double t_tau = tr * taur + tz * tauz;
+  if (t_nu != 0) y.p -= y.q * dg_n * t_tau / (t_nu * y.c * y.c);
+  // Direction: mirror about the boundary.
+  const double nr = tr - 2.0 * t_nu * nur, nz = tz - 2.0 * t_nu * nuz;
+  y.xi = nr / y.c;
+  y.zeta = nz / y.c;
+  const Boundary& b = top ? medium_.surface() : medium_.bottom();
+  y.reflection *= reflection_coefficient(b, grazing, y.c, medium_.omega());
+  if (top) ++y.top_bounces;
+  else ++y.bottom_bounces;
+  update_fade();
+  layer_ = ssp.layer_at(y.z, y.zeta);
+}
+
+}  // namespace acomms::gram

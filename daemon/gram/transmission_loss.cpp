@@ -1,0 +1,112 @@
+// The run: fan, chunks, threads, TL. shared/spec/gram.md §4.7–§4.10, §9.
+#include "gram/transmission_loss.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <thread>
+
+#include "gram/beam_fan.h"
+#include "gram/beam_influence.h"
+#include "gram/environment_validation.h"
+#include "gram/medium.h"
+#include "gram/ray.h"
+#include "gram/receiver_grid.h"
+
+namespace acomms::gram {
+namespace {
+
+// Chunk buffers are bounded to about this many bytes in all.
+constexpr std::size_t kChunkBudgetBytes = 48u << 20;
+constexpr std::size_t kMaxChunks = 8;
+
+struct Chunk {
+  std::uint32_t first_beam, end_beam;
+  std::vector<std::complex<double>> pressure;
+  std::vector<double> intensity;
+};
+
+}  // namespace
+
+TransmissionLoss compute_transmission_loss(const Environment& env, const RunOptions& options) {
+  if (auto error = validate_environment(env)) throw std::invalid_argument(*error);
+  const Medium medium(env);
+  const ReceiverGrid receivers(env);
+  const std::uint32_t beams = beam_count(env);
+  const bool coherent = env.field_mode() == COHERENT;
+  const BeamInfluence influence(medium, receivers, env.field_mode(), env.beam_shape());
+
+  const double a1 = env.launch_angle_min_deg() * std::numbers::pi / 180.0;
+  const double a2 = env.launch_angle_max_deg() * std::numbers::pi / 180.0;
+  const double spacing = (a2 - a1) / (beams - 1);
+  const double zs = env.source_depth_m();
+  const double c_source = medium.ssp().at(zs, medium.ssp().layer_at(zs, 1.0)).c;
+  const double k_source = medium.omega() / c_source;
+
+  const std::size_t bytes_per_chunk = receivers.size() * (coherent ? 16 : 8);
+  const std::size_t chunk_count = std::clamp<std::size_t>(
+      kChunkBudgetBytes / std::max<std::size_t>(bytes_per_chunk, 1), 1,
+      std::min<std::size_t>(kMaxChunks, beams));
+  std::vector<Chunk> chunks(chunk_count);
+  for (std::size_t i = 0; i < chunk_count; ++i) {
+    chunks[i].first_beam = static_cast<std::uint32_t>(beams * i / chunk_count);
+    chunks[i].end_beam = static_cast<std::uint32_t>(beams * (i + 1) / chunk_count);
+  }
+
+  auto run_chunk = [&](Chunk& chunk) {
+    if (coherent) chunk.pressure.assign(receivers.size(), {0.0, 0.0});
+    else chunk.intensity.assign(receivers.size(), 0.0);
+    for (std::uint32_t m = chunk.first_beam; m < chunk.end_beam; ++m) {
+      const double angle = a1 + m * spacing;
+      BeamLaunch launch{angle, std::abs(std::cos(angle)), spacing, c_source, 1.0};
+      if (env.field_mode() == SEMI_COHERENT) {
+        const double s = std::sin(k_source * zs * std::sin(launch.angle_rad));
+        launch.intensity_factor = 2.0 * s * s;  // Lloyd-mirror source pattern (§4.10)
+      }
+      RayTracer ray(medium, launch.angle_rad);
+      RayPoint previous = ray.point();
+      while (ray.next()) {
+        influence.add(previous, ray.point(), launch, chunk.pressure, chunk.intensity);
+        previous = ray.point();
+      }
+    }
+  };
+  unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
+  threads = std::clamp<unsigned>(threads, 1, static_cast<unsigned>(chunk_count));
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i; (i = next.fetch_add(1)) < chunk_count;) run_chunk(chunks[i]);
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+
+  TransmissionLoss result;
+  result.range_m.assign(env.receiver_range_m().begin(), env.receiver_range_m().end());
+  result.depth_m.assign(env.receiver_depth_m().begin(), env.receiver_depth_m().end());
+  result.irregular = env.irregular_receivers();
+  result.beam_count = beams;
+  result.tl_db.assign(receivers.size(), 0.0);
+  for (std::size_t i = 0; i < receivers.size(); ++i) {
+    double power = 0.0;
+    if (coherent) {
+      std::complex<double> p{0.0, 0.0};
+      for (const Chunk& chunk : chunks) p += chunk.pressure[i];
+      power = std::norm(p);
+    } else {
+      for (const Chunk& chunk : chunks) power += chunk.intensity[i];
+    }
+    result.tl_db[i] = power > 0 ? -10.0 * std::log10(power) : std::numeric_limits<double>::infinity();
+  }
+  for (const auto& column : receivers.columns())
+    if (column.range_m <= 0)
+      for (std::size_t index : column.index) result.tl_db[index] = std::numeric_limits<double>::quiet_NaN();
+  return result;
+}
+
+}  // namespace acomms::gram

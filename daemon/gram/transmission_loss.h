@@ -1,0 +1,36 @@
+// Transmission loss on a receiver grid: the public entry of the model.
+//
+// Problem: GRAM and acommsctl need TL from an Environment, quickly and
+// reproducibly. Decision: the fan (spec §4.7) is split into a fixed number
+// of contiguous chunks that depends only on the grid size, never on the
+// thread count; each chunk sums its beams in order into its own buffer and
+// the buffers are added in chunk order. Threads only choose which chunk to
+// run, so the result is bit-identical whatever their number.
+// Thread-safe: each call is independent.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "acomms/gram/environment.pb.h"
+
+namespace acomms::gram {
+
+struct RunOptions {
+  unsigned threads = 0;  // 0: the hardware's concurrency
+};
+
+struct TransmissionLoss {
+  std::vector<double> range_m;  // the environment's receiver ranges
+  std::vector<double> depth_m;  // and depths
+  bool irregular = false;
+  // Grid: tl_db[iz · n_ranges + ir]; irregular: one per receiver pair.
+  // +inf where no beam reaches (shadow); NaN at range 0 (no value).
+  std::vector<double> tl_db;
+  std::uint32_t beam_count = 0;  // the count used (automatic if the input gave 0)
+};
+
+// Throws std::invalid_argument with validate_environment's message.
+TransmissionLoss compute_transmission_loss(const Environment& env, const RunOptions& options = {});
+
+}  // namespace acomms::gram

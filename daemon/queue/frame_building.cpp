@@ -1,0 +1,143 @@
+// Frame building: which queued messages go in a frame, and what an ack ends.
+//
+// The link gives each transmission a few small frames (tens to hundreds of
+// bytes), far fewer than the messages waiting, so every place in a frame is
+// contested. The contest, at time t, for each place: a queue takes part if
+// it is out of blackout, has a message not awaiting an ack, that message
+// fits in what is left of the frame, and its destination agrees with the
+// transmission's. The highest P = value_base * (t - t_last_sent) / ttl
+// wins; a tie goes to the queue that sent longest ago, then to the lower
+// DCCL id. The winner's message is appended (DCCL messages self-delimit, so
+// a frame needs no header of its own) and the contest runs again until
+// nothing fits. A frame that asked for an ack keeps its messages in flight
+// until on_ack(); without one, they are back in the next transmission's
+// contest. Core thread only.
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <set>
+#include <vector>
+
+#include "core/core_thread.h"
+#include "queue/queue_manager.h"
+
+namespace acomms::queue {
+
+// A queue in the contest for one frame, with its standing at the frame's
+// time. Within one frame the time is fixed, so priorities change only for a
+// queue that wins (its P drops to 0), and a queue that cannot take part now
+// (nothing eligible, out of room, wrong destination, blackout) cannot later
+// in the same frame either: room only shrinks and the destination only
+// narrows. So the field is ranked once per frame and losers leave it for
+// good, instead of every queue being re-examined for every message.
+struct QueueManager::Contender {
+  double priority;
+  double last_sent;
+  int dccl_id;
+  TypeState* state;
+
+  // Highest P first; ties to the queue that sent longest ago, then the
+  // lower DCCL id.
+  bool operator<(const Contender& other) const {
+    if (priority != other.priority) return priority > other.priority;
+    if (last_sent != other.last_sent) return last_sent < other.last_sent;
+    return dccl_id < other.dccl_id;
+  }
+};
+
+std::vector<QueueManager::Contender> QueueManager::contenders(double now) {
+  std::vector<Contender> field;
+  field.reserve(by_id_.size());
+  for (auto& [id, state] : by_id_) {
+    const Queue& queue = *state.queue;
+    if (queue.size() == queue.in_flight() || queue.in_blackout(now)) continue;
+    field.push_back({queue.priority(now), queue.last_sent(), id, &state});
+  }
+  std::sort(field.begin(), field.end());
+  return field;
+}
+
+QueueManager::TypeState* QueueManager::contest(std::vector<Contender>& field, double now, size_t room,
+                                               int32_t dest) {
+  for (auto it = field.begin(); it != field.end();) {
+    Queue& queue = *it->state->queue;
+    const QueuedMessage* next = queue.next_eligible();
+    bool takes_part = next != nullptr && !queue.in_blackout(now) && next->encoded.size() <= room &&
+                      (dest == kAnyDestination || next->record.dest == dest || next->record.dest == kBroadcast);
+    if (!takes_part) {
+      it = field.erase(it);
+      continue;
+    }
+    // The winner's standing after it sends: P = 0, sent now. Re-rank it.
+    TypeState* winner = it->state;
+    Contender after{0.0, now, it->dccl_id, winner};
+    field.erase(it);
+    field.insert(std::upper_bound(field.begin(), field.end(), after), after);
+    return winner;
+  }
+  return nullptr;
+}
+
+std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  double now = clock_.now_seconds();
+  // Whatever the last transmission carried and was not acknowledged goes
+  // back into the contest: this is its next opportunity.
+  for (auto& [id, state] : by_id_) {
+    state.queue->release_in_flight([&](const QueuedMessage& m) {
+      emit(QueueEventKind::kRetry, state, m.record, now, m.in_flight_frame, "not acknowledged", false);
+    });
+  }
+  in_flight_.clear();
+  expire();
+
+  std::vector<Frame> frames;
+  int32_t dest = request.dest;
+  for (uint32_t n = 0; n < request.max_num_frames; ++n) {
+    Frame frame;
+    frame.frame_id = next_frame_id_++;
+    std::vector<Contender> field = contenders(now);
+    while (TypeState* winner = contest(field, now, request.max_frame_bytes - frame.bytes.size(), dest)) {
+      Queue& queue = *winner->queue;
+      const QueuedMessage& next = *queue.next_eligible();
+      if (dest == kAnyDestination) dest = next.record.dest;
+      // An ack needs a single addressee, a link that carries acks, and a
+      // type that wants them; otherwise sending is the end of the message.
+      bool awaits_ack = request.ack_requested && dest != kBroadcast && queue.policy().ack;
+      frame.bytes += next.encoded;
+      frame.message_ids.push_back(next.record.id);
+      frame.ack_requested = frame.ack_requested || awaits_ack;
+      emit(QueueEventKind::kSent, *winner, next.record, now, frame.frame_id, awaits_ack ? "awaiting ack" : "",
+           !awaits_ack);
+      if (awaits_ack) {
+        auto& types = in_flight_[frame.frame_id];
+        if (types.empty() || types.back() != winner) types.push_back(winner);
+      }
+      queue.mark_sent(next.record.id, awaits_ack ? frame.frame_id : 0, now);  // `next` is gone after this
+    }
+    if (frame.bytes.empty()) break;
+    frame.dest = dest;
+    frames.push_back(std::move(frame));
+  }
+  return frames;
+}
+
+void QueueManager::on_ack(uint64_t frame_id) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  auto it = in_flight_.find(frame_id);
+  if (it == in_flight_.end()) {
+    spdlog::debug("queue: ack for frame {} that awaits none (late or duplicate)", frame_id);
+    return;
+  }
+  double now = clock_.now_seconds();
+  std::set<TypeState*> types(it->second.begin(), it->second.end());
+  for (TypeState* state : types) {
+    for (const QueuedMessage& m : state->queue->take_acked(frame_id)) {
+      emit(QueueEventKind::kAcked, *state, m.record, now, frame_id, "", true);
+    }
+  }
+  in_flight_.erase(it);
+}
+
+}  // namespace acomms::queue

@@ -1,0 +1,71 @@
+// The receive side: a received frame back into messages for this node.
+//
+// A frame is DCCL messages end to end with no lengths between them, so it
+// is unstitched by decoding: each message's id says its type, and decoding
+// it says where the next begins. Bytes that do not decode end the frame
+// (nothing after them can be found); what came before is kept. Messages for
+// another node are left out unless the queue config is promiscuous, and a
+// retransmission (a sender that missed our ack sends again) is recognised
+// by the duplicate filter and passed on only once. Core thread only.
+
+#include <spdlog/spdlog.h>
+
+#include <string>
+#include <vector>
+
+#include "core/core_thread.h"
+#include "queue/queue_manager.h"
+
+namespace acomms::queue {
+
+std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32_t transmission_src) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  double now = clock_.now_seconds();
+  std::vector<ReceivedMessage> out;
+  size_t offset = 0;
+  while (offset < frame.size()) {
+    std::string_view rest = frame.substr(offset);
+    try {
+      const dccl::TypeInfo* info = codec_.find_id(codec_.id_of(rest));
+      if (info == nullptr) throw dccl::decode_error("unknown DCCL id " + std::to_string(codec_.id_of(rest)));
+      size_t used = 0;
+      ReceivedMessage received;
+      received.message = codec_.decode_as(info->name, rest, &used);
+      if (used == 0) throw dccl::decode_error(info->name + " used no bytes");
+      offset += used;
+      received.type = info->name;
+      received.time = now;
+      auto state_it = by_name_.find(info->name);
+      if (state_it == by_name_.end()) continue;
+      TypeState& state = *state_it->second;
+      received.dest = state.roles.destination(*received.message);
+      int32_t src = state.roles.source(*received.message);
+      received.src = src >= 0 ? src : transmission_src;
+      if (!promiscuous_ && received.dest != own_id_ && received.dest != kBroadcast) {
+        spdlog::debug("queue {}: received message for node {}, not for us", info->name, received.dest);
+        continue;
+      }
+      received.encoded.assign(rest.substr(0, used));
+      if (duplicate_filter_.seen(received.src, received.encoded, now)) {
+        ++duplicates_;
+        spdlog::info("queue {}: retransmission from {} not passed on again", info->name, received.src);
+        continue;
+      }
+      JournalMessage as_event;
+      as_event.src = received.src;
+      as_event.dest = received.dest;
+      emit(QueueEventKind::kReceived, state, as_event, now, 0, "", false, false, received.encoded);
+      out.push_back(std::move(received));
+    } catch (const dccl::Error& e) {
+      // DCCL has no length fields: after bytes that do not decode, nothing
+      // later in the frame can be found.
+      ++malformed_frames_;
+      spdlog::warn("queue: received frame from {} undecodable at byte {} of {} ({}): rest dropped",
+                   transmission_src, offset, frame.size(), e.what());
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace acomms::queue
