@@ -59,13 +59,16 @@ void print_status(const v1::LinkStatusResponse& link) {
   std::printf("known nodes:  %s\n", nodes.empty() ? "-" : nodes.c_str());
   const v1::LinkCounters& c = link.counters();
   std::printf("counters:     sent %llu, failed %llu, data received %llu, acks received %llu,\n"
-              "              delivered %llu, duplicates dropped %llu, malformed frames %llu\n",
+              "              delivered %llu, duplicates dropped %llu, malformed frames %llu,\n"
+              "              lost to half-duplex %llu, lost to collisions %llu\n",
               static_cast<unsigned long long>(c.transmissions_sent()),
               static_cast<unsigned long long>(c.transmissions_failed()),
               static_cast<unsigned long long>(c.data_received()), static_cast<unsigned long long>(c.acks_received()),
               static_cast<unsigned long long>(c.messages_delivered()),
               static_cast<unsigned long long>(c.duplicates_dropped()),
-              static_cast<unsigned long long>(c.malformed_frames()));
+              static_cast<unsigned long long>(c.malformed_frames()),
+              static_cast<unsigned long long>(c.lost_half_duplex()),
+              static_cast<unsigned long long>(c.lost_collision()));
 }
 
 void run_status(const GlobalOptions& global) {
@@ -154,7 +157,7 @@ void add_link_command(CLI::App& app, const GlobalOptions& global) {
   status->footer(
       "Shows the modem driver (running, or restarting after a failure), the MAC and its cycle of slots, "
       "the nodes it knows, and link counters (transmissions, acks, messages delivered, duplicates, "
-      "malformed frames).\n\n"
+      "malformed frames, packets lost to half-duplex and to collisions).\n\n"
       "Example:\n  acommsctl link status --json");
   status->callback([&global] { run_status(global); });
 

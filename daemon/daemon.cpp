@@ -123,7 +123,8 @@ void Daemon::build_link() {
       own_id, *queues_, *mac_, *driver_, [this](queue::ReceivedMessage message, const v1::ModemTransmission& from) {
         spdlog::debug("received {} from {} (transmission from {})", message.type, message.src, from.src());
         subscribers_.publish(service::to_received_message(message, from));
-      });
+      },
+      link::LinkOptions::from_config(config_.mac(), scheduler_->clock()));
 }
 
 // Messages expire on time even when no transmission comes to notice them.

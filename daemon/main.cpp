@@ -1,6 +1,7 @@
 // acommsd: the acoustic communications daemon.
 //
-// Exit codes: 0 clean stop (or a successful --check-config), 1 a config or
+// Exit codes: 0 clean stop (or a successful --check-config, warnings and
+// all: a slot too short for one frame is only warned about), 1 a config or
 // start-up error (the message says which file and what is wrong), 2 bad
 // command-line usage.
 
@@ -15,6 +16,7 @@
 #include "core/config_loader.h"
 #include "core/logging.h"
 #include "daemon.h"
+#include "link/slot_check.h"
 #include "service/tls_certificates.h"
 
 namespace {
@@ -74,7 +76,12 @@ int main(int argc, char** argv) {
   }
   if (!check_path.empty()) {
     try {
-      acomms::core::load_config_file(check_path);
+      acomms::v1::Config checked = acomms::core::load_config_file(check_path);
+      // Slots too short for one frame are a warning: the config still works.
+      for (const std::string& warning :
+           acomms::link::short_slot_warnings(checked, acomms::link::DriverRegistry::linked())) {
+        std::cerr << "acommsd: warning: " << check_path << ": " << warning << "\n";
+      }
       std::cout << check_path << ": ok\n";
       return 0;
     } catch (const std::exception& e) {

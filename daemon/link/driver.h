@@ -16,7 +16,19 @@
 // node src to send its data now (Micro-Modem "third-party" cycle
 // initialization). The polled node's driver, on hearing it, makes a data
 // request and transmits as if its own MAC had asked.
+//
+// Timing: a packet must not outrun its slot (link/slot_budget.h), so the
+// link asks the driver how long its packets are in the water. The defaults
+// are a real modem's estimate: the Micro-Modem rate table's figures
+// (link/rate_table.h) plus kAirTimeMargin. A driver that knows better (the
+// simulator knows its own figures exactly; a link without air time, UDP,
+// has none) overrides them.
+//
+// Losses only the driver sees (a packet heard while transmitting, two that
+// overlapped) are counted in DriverCounters, for LinkStatus.
 
+#include <chrono>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -45,6 +57,19 @@ class DriverError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What a real modem's estimate adds to the rate table's air time: the
+// figures are derived, not measured (rate_table.h), so a slot keeps room.
+inline constexpr double kAirTimeMargin = 0.10;
+
+// Packets the driver knows it lost, since it was built. All zero for a
+// driver that cannot tell.
+struct DriverCounters {
+  uint64_t lost_half_duplex = 0;  // arrived while this node transmitted
+  uint64_t lost_collision = 0;    // overlapped another packet arriving
+
+  DriverCounters& operator+=(const DriverCounters& other);
+};
+
 class Driver {
  public:
   virtual ~Driver() = default;
@@ -58,6 +83,20 @@ class Driver {
   virtual void do_work() = 0;
   // Starts a transmission (see the file comment). Throws DriverError.
   virtual void initiate_transmission(const v1::ModemTransmission& transmission) = 0;
+
+  // How long a DATA packet of `num_frames` frames at `rate` is in the water
+  // (zero for a rate outside the table). Default: rate table + margin.
+  virtual std::chrono::nanoseconds packet_air_time(int32_t rate, uint32_t num_frames) const;
+  // From the end of a DATA packet heard to the end of its ACK in the water:
+  // the receiver's turnaround plus the ACK's air time. Default: 0.5 s plus
+  // a mini-packet (rate_table.h), plus the margin.
+  virtual std::chrono::nanoseconds ack_time(int32_t rate) const;
+  // How fast packets travel, m/s, for the guard that covers the longest
+  // range (mac.max_range_m); 0: they arrive at once (no guard). Default:
+  // kNominalSoundSpeed.
+  virtual double sound_speed() const;
+  // Losses this driver has seen (see DriverCounters).
+  virtual DriverCounters counters() const { return {}; }
 };
 
 }  // namespace acomms::link

@@ -70,6 +70,7 @@ void DriverSupervisor::stop() {
     } catch (const std::exception& e) {
       spdlog::warn("driver {}: error while stopping: {}", options_.driver_name, e.what());
     }
+    carried_ += driver_->counters();  // a restarted driver counts from zero
     driver_.reset();
   }
   if (status_.state != DriverState::kStopped) set_state(DriverState::kStopped);
@@ -149,6 +150,7 @@ void DriverSupervisor::fail(const std::string& reason) {
     } catch (const std::exception& e) {
       spdlog::warn("driver {}: error while stopping: {}", options_.driver_name, e.what());
     }
+    carried_ += driver_->counters();  // a restarted driver counts from zero
     driver_.reset();
   }
   ++status_.failures;
@@ -166,6 +168,22 @@ void DriverSupervisor::set_state(DriverState state) {
   status_.state = state;
   status_.since = scheduler_.clock().now();
   if (on_status_) on_status_(status_);
+}
+
+std::chrono::nanoseconds DriverSupervisor::packet_air_time(int32_t rate, uint32_t num_frames) const {
+  return driver_ ? driver_->packet_air_time(rate, num_frames) : Driver::packet_air_time(rate, num_frames);
+}
+
+std::chrono::nanoseconds DriverSupervisor::ack_time(int32_t rate) const {
+  return driver_ ? driver_->ack_time(rate) : Driver::ack_time(rate);
+}
+
+double DriverSupervisor::sound_speed() const { return driver_ ? driver_->sound_speed() : Driver::sound_speed(); }
+
+DriverCounters DriverSupervisor::counters() const {
+  DriverCounters total = carried_;
+  if (driver_) total += driver_->counters();
+  return total;
 }
 
 }  // namespace acomms::link

@@ -86,6 +86,12 @@ class DriverSupervisor final : public Driver {
   // Hands the transmission to the driver, or reports it failed if the
   // driver is down (or fails on it).
   void initiate_transmission(const v1::ModemTransmission& transmission) override;
+  // The running driver's timing (the defaults while it is down).
+  std::chrono::nanoseconds packet_air_time(int32_t rate, uint32_t num_frames) const override;
+  std::chrono::nanoseconds ack_time(int32_t rate) const override;
+  double sound_speed() const override;
+  // Every driver's counters since the supervisor was built, across restarts.
+  DriverCounters counters() const override;
 
   const DriverStatus& status() const { return status_; }
   // The running driver, or nullptr while it is down (for tests and tools).
@@ -105,6 +111,7 @@ class DriverSupervisor final : public Driver {
   DriverCallbacks callbacks_;
   StatusCallback on_status_;
   std::unique_ptr<Driver> driver_;
+  DriverCounters carried_;  // from the drivers that failed or were stopped
   DriverStatus status_;
   core::Scheduler::TaskId work_task_ = 0;
   core::Scheduler::TaskId restart_task_ = 0;

@@ -2,13 +2,46 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/core_thread.h"
 
 namespace acomms::link {
 
+namespace {
+
+// What is left of the slot of `transmission` at `now` (the whole slot when
+// the time is unknown).
+std::chrono::nanoseconds time_left(const v1::ModemTransmission& transmission, const core::Clock* clock) {
+  using std::chrono::nanoseconds;
+  auto slot = nanoseconds(std::llround(transmission.slot_seconds() * 1e9));
+  if (clock == nullptr || !(transmission.time() > 0)) return slot;
+  auto start = nanoseconds(std::llround(transmission.time() * 1e9));
+  auto elapsed = std::chrono::duration_cast<nanoseconds>(clock->now().time_since_epoch()) - start;
+  // The slot start went through a double (about 0.2 us at today's epoch):
+  // a request at the start must not lose a frame to that rounding.
+  if (elapsed < std::chrono::microseconds(1)) return slot;
+  return std::max(nanoseconds(0), slot - elapsed);
+}
+
+}  // namespace
+
+LinkOptions LinkOptions::from_config(const v1::MacConfig& mac, const core::Clock& clock) {
+  LinkOptions options;
+  options.clock = &clock;
+  if (mac.has_max_range_m()) options.max_range_m = mac.max_range_m();
+  return options;
+}
+
 LinkController::LinkController(int32_t own_id, queue::QueueManager& queues, mac::Mac& mac, Driver& driver,
-                               Deliver deliver)
-    : own_id_(own_id), queues_(queues), mac_(mac), driver_(driver), deliver_(std::move(deliver)) {}
+                               Deliver deliver, LinkOptions options)
+    : own_id_(own_id),
+      queues_(queues),
+      mac_(mac),
+      driver_(driver),
+      deliver_(std::move(deliver)),
+      options_(options) {}
 
 void LinkController::start() {
   ACOMMS_ASSERT_CORE_THREAD();
@@ -25,6 +58,12 @@ void LinkController::start() {
   };
   driver_.start(std::move(callbacks));
   mac_.start([this](const v1::ModemTransmission& t) {
+    // The driver's data request, if any, comes within this call.
+    struct OwnSlot {
+      bool& flag;
+      explicit OwnSlot(bool& f) : flag(f) { flag = true; }
+      ~OwnSlot() { flag = false; }
+    } own_slot(in_own_slot_);
     try {
       driver_.initiate_transmission(t);
     } catch (const DriverError& e) {
@@ -45,10 +84,15 @@ void LinkController::on_data_request(v1::ModemTransmission* transmission) {
   queue::DataRequest request;
   request.dest = transmission->has_dest() ? transmission->dest() : queue::kAnyDestination;
   request.max_frame_bytes = transmission->max_frame_bytes();
-  request.max_num_frames = transmission->max_num_frames();
+  request.max_num_frames = frames_for_slot(*transmission);
   request.ack_requested = transmission->ack_requested();
-  std::vector<queue::Frame> frames = queues_.build_frames(request);
+  transmission->set_max_num_frames(request.max_num_frames);
   transmission->clear_frame();
+  // Not even one frame fits: no packet at all (not even the empty one
+  // below), since one that outruns the slot is lost anyway and costs the
+  // next slot's owner its reception.
+  if (request.max_num_frames == 0) return;
+  std::vector<queue::Frame> frames = queues_.build_frames(request);
   std::vector<uint64_t> frame_ids;
   bool ack = false;
   for (queue::Frame& frame : frames) {
@@ -65,6 +109,29 @@ void LinkController::on_data_request(v1::ModemTransmission* transmission) {
   if (request.dest == queue::kAnyDestination) transmission->set_dest(dest);
   transmission->set_ack_requested(ack);
   if (ack) awaiting_ack_[transmission->dest()] = std::move(frame_ids);
+}
+
+uint32_t LinkController::frames_for_slot(const v1::ModemTransmission& transmission) {
+  uint32_t limit = transmission.max_num_frames();
+  if (!(transmission.slot_seconds() > 0)) return limit;  // no slot given: nothing to budget
+  SlotBudget budget;
+  budget.rate = transmission.rate();
+  budget.time_left = time_left(transmission, options_.clock);
+  if (!in_own_slot_) {
+    // Answering a poll: the slot began the poll's travel before we heard it.
+    budget.time_left = std::max(std::chrono::nanoseconds(0),
+                                budget.time_left - travel_time(driver_, options_.max_range_m));
+  }
+  budget.ack_requested = transmission.ack_requested();
+  budget.max_range_m = options_.max_range_m;
+  uint32_t fit = frames_that_fit(driver_, budget, limit);
+  if (fit == 0 &&
+      short_slots_warned_.emplace(transmission.src(), transmission.rate(), transmission.slot_seconds()).second) {
+    spdlog::warn("link: a slot of node {} at rate {} ({} s) carries no data: {} (see acommsd --check-config)",
+                 transmission.src(), transmission.rate(), transmission.slot_seconds(),
+                 describe_shortfall(driver_, budget));
+  }
+  return fit;
 }
 
 void LinkController::on_receive(const v1::ModemTransmission& transmission) {

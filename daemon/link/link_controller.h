@@ -3,14 +3,26 @@
 // transmissions, the driver's data requests are filled by the queues,
 // received frames are split into messages for the subscribers, and ACKs
 // clear what they acknowledge. Runs on the core thread.
+//
+// A data request asks the queues for no more frames than fit in what is
+// left of the slot (link/slot_budget.h, with the driver's timing): a packet
+// that outruns its slot is lost by a half-duplex neighbour whose own slot
+// has begun. A request that answers a poll (one the MAC did not start) is
+// dated from the poll's arrival (transmission_rules.h), later than the
+// master's slot start by the poll's travel: the budget takes one more
+// travel guard off what is left.
 
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <set>
+#include <tuple>
 #include <vector>
 
 #include "acomms/v1/modem_transmission.pb.h"
+#include "core/clock.h"
 #include "link/driver.h"
+#include "link/slot_budget.h"
 #include "mac/mac.h"
 #include "queue/queue_manager.h"
 
@@ -24,13 +36,28 @@ struct LinkStats {
   uint64_t messages_delivered = 0;
 };
 
+struct LinkOptions {
+  // Tells how much of its slot has gone when a data request comes (an
+  // answer to a poll comes late in it). Null: requests are taken to come at
+  // the start of their slot, as the MAC's own do.
+  const core::Clock* clock = nullptr;
+  // The farthest node (mac.max_range_m): the slot keeps the time sound
+  // takes to get there (and back, for an ACK).
+  double max_range_m = kDefaultMaxRangeM;
+
+  // From the config (mac.max_range_m, unset: kDefaultMaxRangeM) and the
+  // core's clock.
+  static LinkOptions from_config(const v1::MacConfig& mac, const core::Clock& clock);
+};
+
 class LinkController {
  public:
   // Called for every received message meant for this node.
   using Deliver = std::function<void(queue::ReceivedMessage message, const v1::ModemTransmission& from)>;
 
   // All references must outlive the controller.
-  LinkController(int32_t own_id, queue::QueueManager& queues, mac::Mac& mac, Driver& driver, Deliver deliver);
+  LinkController(int32_t own_id, queue::QueueManager& queues, mac::Mac& mac, Driver& driver, Deliver deliver,
+                 LinkOptions options = {});
 
   // Starts the driver, then the MAC. Throws what the driver's start throws.
   void start();
@@ -41,6 +68,8 @@ class LinkController {
 
  private:
   void on_data_request(v1::ModemTransmission* transmission);
+  // max_num_frames capped by what fits in the rest of the slot.
+  uint32_t frames_for_slot(const v1::ModemTransmission& transmission);
   void on_receive(const v1::ModemTransmission& transmission);
   void on_transmit_result(const v1::ModemTransmission& transmission, bool ok, const std::string& error);
 
@@ -49,6 +78,10 @@ class LinkController {
   mac::Mac& mac_;
   Driver& driver_;
   Deliver deliver_;
+  LinkOptions options_;
+  bool in_own_slot_ = false;  // the MAC's transmission is being started
+  // Slot shapes (src, rate, seconds) already warned about as too short.
+  std::set<std::tuple<int32_t, int32_t, double>> short_slots_warned_;
   // Queue frame ids of the last DATA transmission to each destination, by
   // frame index: an ACK names indices, the queues know frame ids.
   std::map<int32_t, std::vector<uint64_t>> awaiting_ack_;

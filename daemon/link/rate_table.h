@@ -35,6 +35,11 @@ inline constexpr int32_t kMinRate = 0;
 inline constexpr int32_t kMaxRate = 5;
 inline constexpr std::chrono::milliseconds kPacketHeader{300};  // probe + guard
 inline constexpr std::chrono::milliseconds kMiniPacket{700};    // poll, ACK
+// From the end of a packet heard to the start of the answer (ACK, poll
+// response): the Micro-Modem's receive-to-transmit turnaround, roughly.
+inline constexpr std::chrono::milliseconds kTurnaround{500};
+// Sea water, m/s: how far a packet's sound has come, for slot guards.
+inline constexpr double kNominalSoundSpeed = 1500;
 
 // The row for `rate`, or nullptr when rate is outside 0..5.
 const ModemRate* find_rate(int32_t rate);

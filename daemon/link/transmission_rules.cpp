@@ -73,6 +73,12 @@ ModemTransmission make_poll_response(const ModemTransmission& poll, int32_t own_
   out.set_type(ModemTransmission::DATA);
   out.set_ack_requested(poll.ack_requested());
   if (poll.has_slot_seconds()) out.set_slot_seconds(poll.slot_seconds());
+  // A poll as heard has the time its reception ended; the master's slot
+  // began a mini-packet before that, and one travel time before that
+  // again, which the link's slot budget allows for (link_controller.h).
+  if (poll.time() > 0) {
+    out.set_time(poll.time() - std::chrono::duration<double>(kMiniPacket).count());
+  }
   return out;
 }
 

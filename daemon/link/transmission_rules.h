@@ -41,7 +41,9 @@ v1::ModemTransmission make_ack(const v1::ModemTransmission& received, int32_t ow
 
 // A received transmission: is it a poll asking us to send?
 bool is_poll_for(const v1::ModemTransmission& received, int32_t own_id);
-// What a polled node sends: its own DATA to the poll's dest, at its rate.
+// What a polled node sends: its own DATA to the poll's dest, at its rate,
+// with the poll's slot_seconds and, when the poll has a time (the end of
+// its reception), time = the start of its reception (kMiniPacket earlier).
 v1::ModemTransmission make_poll_response(const v1::ModemTransmission& poll, int32_t own_id);
 
 // A received transmission: should on_receive see it? DATA with frames

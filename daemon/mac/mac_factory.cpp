@@ -52,6 +52,9 @@ Cycle cycle_from_config(const v1::MacConfig& config) {
 std::unique_ptr<Mac> make_mac(const v1::MacConfig& config, int32_t own_id,
                               core::Scheduler& scheduler) {
   const std::string& name = config.name();
+  if (config.has_max_range_m() && !(config.max_range_m() >= 0 && std::isfinite(config.max_range_m())))
+    throw std::invalid_argument("mac.max_range_m must be a finite number of metres >= 0 (unset: 2000), got " +
+                                std::to_string(config.max_range_m()));
   if (name.empty() || name == "none") return std::make_unique<SilentMac>();
   if (name == "polled" || name == "fixed") {
     Cycle cycle = cycle_from_config(config);

@@ -563,7 +563,10 @@ TEST(AcommsctlSubscribe, PrintsOneJsonLinePerReceivedMessage) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   const int port1 = free_udp_port(), port2 = free_udp_port();
-  const std::string mac = "name: \"fixed\" slot { src: 1 rate: 5 seconds: 2 } slot { src: 2 rate: 5 seconds: 2 }";
+  // Both nodes at the origin: no travel time to guard (max_range_m 0), so a
+  // 2 s slot at rate 5 holds one frame and its ACK.
+  const std::string mac =
+      "name: \"fixed\" slot { src: 1 rate: 5 seconds: 2 } slot { src: 2 rate: 5 seconds: 2 } max_range_m: 0";
   auto sim = [](int listen, int peer) {
     return "sim { listen: \"127.0.0.1:" + std::to_string(listen) + "\" peers: \"127.0.0.1:" + std::to_string(peer) +
            "\" }";

@@ -247,6 +247,37 @@ TEST_F(DaemonTest, CheckConfigAndExampleConfig) {
   EXPECT_NE(bad.err.find(bad_path + ":3:3: field 'grpc.tcp_listen'"), std::string::npos) << bad.err;
 }
 
+TEST_F(DaemonTest, CheckConfigWarnsOfASlotTooShortForOneFrameAndStillPasses) {
+  // Slot 2 is 4 s at rate 5: one frame, its ACK and the travel to 2000 m
+  // and back need 4.55 s. Slot 1 (8 s) holds a full packet.
+  std::string path = (dir_ / "short.conf").string();
+  std::ofstream(path) << "driver { name: \"sim\" modem_id: 1 }\n"
+                      << "mac { name: \"fixed\" slot { src: 1 rate: 5 seconds: 8 } slot { src: 2 rate: 5 seconds: 4 } }\n";
+  RunResult check = run(kAcommsd, {"--check-config", path}, (dir_ / "check").string());
+  EXPECT_EQ(check.exit_code, 0) << check.err;
+  EXPECT_EQ(check.out, path + ": ok\n");
+  EXPECT_EQ(check.err,
+            "acommsd: warning: " + path +
+                ": mac slot 2 (src 2, rate 5, 4 s) cannot carry one frame: one frame needs 4.55 s (air 0.69 s, "
+                "turnaround and ACK 1.20 s, travel 2 x 1.33 s for 2000 m), 4.00 s are left\n");
+
+  // With the nodes within 1 km the same slot carries frames: no warning.
+  std::ofstream(path) << "driver { name: \"sim\" modem_id: 1 }\n"
+                      << "mac { name: \"fixed\" slot { src: 1 rate: 5 seconds: 8 } slot { src: 2 rate: 5 seconds: 4 }\n"
+                      << "      max_range_m: 1000 }\n";
+  RunResult near = run(kAcommsd, {"--check-config", path}, (dir_ / "near").string());
+  EXPECT_EQ(near.exit_code, 0) << near.err;
+  EXPECT_EQ(near.err, "");
+
+  // The examples carry full packets: no warning either.
+  for (const char* example : {"vehicle.conf", "topside.conf"}) {
+    RunResult ok = run(kAcommsd, {"--check-config", std::string(ACOMMS_SOURCE_DIR "/examples/") + example},
+                       (dir_ / "example").string());
+    EXPECT_EQ(ok.exit_code, 0) << ok.err;
+    EXPECT_EQ(ok.err, "") << example;
+  }
+}
+
 TEST_F(DaemonTest, StartupErrorsExitNonZeroWithTheReason) {
   fs::create_directories(dir_ / "data");
   std::ofstream(db_path()) << std::string(4096, 'x');

@@ -71,7 +71,9 @@ TEST(ThreeNodeLoopback, EveryStatusReachesTheOtherTwo) {
     config << " } }\n"
            << "mac { name: \"fixed\"";
     for (int slot : ids) config << " slot { src: " << slot << " rate: 5 seconds: 3 }";
-    config << " }\n";
+    // At most 600 m apart: the guard for the default 2000 m would leave a
+    // 3 s slot at rate 5 no room for one frame and its ACK.
+    config << " max_range_m: 600 }\n";
     config.close();
     daemons[id] = std::make_unique<ChildProcess>(ACOMMSD_BINARY,
                                                  std::vector<std::string>{"--config", (dir / (name + ".conf")).string()},

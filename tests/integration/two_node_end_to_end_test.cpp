@@ -119,7 +119,10 @@ class TwoNode : public ::testing::Test {
            << "driver { name: \"sim\" modem_id: " << id << " sim { position { x: " << (id == 1 ? 300 : 0)
            << " } listen: \"127.0.0.1:" << port_[id] << "\" peers: \"127.0.0.1:" << port_[3 - id] << "\" } }\n"
            << "mac { name: \"fixed\" slot { src: 1 rate: 5 seconds: " << kSlotSeconds
-           << " } slot { src: 2 rate: 5 seconds: " << kSlotSeconds << " } }\n"
+           << " } slot { src: 2 rate: 5 seconds: " << kSlotSeconds << " }"
+           // 300 m apart: with the default 2000 m guard a 3 s slot at rate 5
+           // could not carry one frame and its ACK (link/slot_budget.h).
+           << " max_range_m: 400 }\n"
            << "queue {\n"
            << "  type { type: \"example.Status\" policy { max_queue: 1000 ttl_s: 600 }\n"
            << "         roles { source_field: \"src\" destination_field: \"dest\" timestamp_field: \"time\" } }\n"

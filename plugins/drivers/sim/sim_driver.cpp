@@ -163,6 +163,15 @@ core::Scheduler::TaskId SimDriver::schedule(Clock::time_point when, std::functio
 
 void SimDriver::initiate_transmission(const ModemTransmission& request) { sequence_.transmit(request); }
 
+std::chrono::nanoseconds SimDriver::packet_air_time(int32_t rate, uint32_t num_frames) const {
+  const link::ModemRate* row = link::find_rate(rate);
+  return row ? link::packet_air_time(*row, num_frames) : std::chrono::nanoseconds(0);
+}
+
+std::chrono::nanoseconds SimDriver::ack_time(int32_t) const { return kTurnaround + link::kMiniPacket; }
+
+link::DriverCounters SimDriver::counters() const { return {stats_.lost_half_duplex, stats_.lost_collision}; }
+
 std::string SimDriver::transmit(ModemTransmission tx, bool report_result) {
   Clock::time_point now = scheduler_.clock().now();
   if (now < busy_until_) {
@@ -234,17 +243,31 @@ void SimDriver::finish_arrival(uint64_t key) {
   arrivals_.erase(it);
   if (arrival.collided) {
     ++stats_.lost_collision;
-    spdlog::debug("sim modem {}: packet from {} lost in a collision", id_, arrival.envelope.sender);
+    note_lost(arrival, "in a collision with another packet");
   } else if (arrival.deaf) {
     ++stats_.lost_half_duplex;
-    spdlog::debug("sim modem {}: packet from {} lost: we were transmitting", id_, arrival.envelope.sender);
+    note_lost(arrival, "to half-duplex: it arrived while this node transmitted");
   } else if (uniform() < loss_probability(arrival.range_m)) {
     ++stats_.lost_random;
     spdlog::debug("sim modem {}: packet from {} lost at {:.0f} m", id_, arrival.envelope.sender,
                   arrival.range_m);
   } else {
     ++stats_.received;
+    if (lost_in_burst_ > 0) {
+      spdlog::info("sim modem {}: a packet arrived intact again after {} lost to half-duplex or collisions", id_,
+                   lost_in_burst_);
+      lost_in_burst_ = 0;
+    }
     deliver(arrival);
+  }
+}
+
+void SimDriver::note_lost(const Arrival& arrival, const char* why) {
+  if (lost_in_burst_++ == 0) {
+    spdlog::warn("sim modem {}: packet from {} lost {} (further losses are counted in link status)", id_,
+                 arrival.envelope.sender, why);
+  } else {
+    spdlog::debug("sim modem {}: packet from {} lost {}", id_, arrival.envelope.sender, why);
   }
 }
 

@@ -18,6 +18,12 @@
 //    that missed a packet's start cannot lock on to it afterwards).
 //  - Collisions: two packets whose arrivals overlap at a node destroy each
 //    other there (and only there: elsewhere they may arrive apart).
+//  Half-duplex and collision losses are counted (counters(), LinkStatus)
+//  and logged once per burst: the first loss, and, when a packet next
+//  arrives intact, how many were lost meanwhile.
+// Timing for the slot budget (link/slot_budget.h) is exact, not estimated:
+// the rate table's air time, kTurnaround plus a mini-packet for an ACK, and
+// the configured sound speed.
 // Protocol, as driver.h asks, run by link::DriverSequence: DATA addressed to
 // this node with ack_requested is answered after a turnaround (kTurnaround)
 // with a software ACK listing all its frames, itself a packet subject to the
@@ -48,6 +54,7 @@
 #include "core/scheduler.h"
 #include "link/driver.h"
 #include "link/driver_sequence.h"
+#include "link/rate_table.h"
 #include "sim/sim_channel.h"
 #include "sim/sim_envelope.h"
 #include "sim/sim_medium.h"
@@ -55,8 +62,8 @@
 namespace acomms::drivers {
 
 // Time from the end of a received packet to the start of the answer (ACK,
-// poll response): the Micro-Modem's receive-to-transmit turnaround, roughly.
-inline constexpr std::chrono::milliseconds kTurnaround{500};
+// poll response): the Micro-Modem's (link/rate_table.h).
+inline constexpr std::chrono::milliseconds kTurnaround = link::kTurnaround;
 
 struct SimStats {
   uint64_t sent = 0;              // packets this node put in the water
@@ -80,6 +87,10 @@ class SimDriver final : public link::Driver {
   void stop() override;
   void do_work() override;
   void initiate_transmission(const v1::ModemTransmission& transmission) override;
+  std::chrono::nanoseconds packet_air_time(int32_t rate, uint32_t num_frames) const override;
+  std::chrono::nanoseconds ack_time(int32_t rate) const override;
+  double sound_speed() const override { return sound_speed_; }
+  link::DriverCounters counters() const override;
 
   int32_t modem_id() const { return id_; }
   const SimPosition& position() const { return position_; }
@@ -109,6 +120,8 @@ class SimDriver final : public link::Driver {
   void hear(const SimEnvelope& envelope);
   void finish_arrival(uint64_t key);
   void deliver(const Arrival& arrival);
+  // A packet lost to half-duplex or a collision: logged if it begins a burst.
+  void note_lost(const Arrival& arrival, const char* why);
   // The sequence's Medium::send: puts a packet in the water now (DATA with
   // frames for its air time at the rate, anything else as a mini-packet);
   // "" or why not ("busy").
@@ -131,6 +144,7 @@ class SimDriver final : public link::Driver {
   std::vector<Interval> own_transmissions_;  // recent, for half-duplex
   std::map<uint64_t, Arrival> arrivals_;     // packets on their way to us
   uint64_t next_arrival_ = 1;
+  uint64_t lost_in_burst_ = 0;  // half-duplex and collision losses since a packet last arrived
   std::unordered_set<core::Scheduler::TaskId> tasks_;
   mutable SimStats stats_;
 };

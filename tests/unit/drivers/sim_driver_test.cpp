@@ -177,6 +177,33 @@ TEST_F(SimDriverTest, OverlappingPacketsCollideAtTheReceiver) {
   EXPECT_EQ(b.driver->stats().lost_collision, 2u);
 }
 
+TEST_F(SimDriverTest, CountersReportHalfDuplexAndCollisionLossesForLinkStatus) {
+  TestNode a(scheduler_, channel_, 1, -1500), b(scheduler_, channel_, 2, 0), c(scheduler_, channel_, 3, 1500);
+  a.send(2, {"a"}, 0, false);
+  scheduler_.run_until(at(milliseconds(1000)));
+  c.send(2, {"c"}, 0, false);  // at B: A over [1, 4.5] s, C over [2, 5.5] s: both collide
+  scheduler_.run_until(at(milliseconds(10000)));
+  // B transmits over [10, 13.5] s while A's next reaches it over [11, 14.5] s.
+  a.send(2, {"a2"}, 0, false);
+  scheduler_.run_until(at(milliseconds(11000)));
+  b.send(1, {"b"}, 0, false);
+  scheduler_.run_until(t0_ + seconds(30));
+  link::DriverCounters counters = b.driver->counters();
+  EXPECT_EQ(counters.lost_collision, 2u);
+  EXPECT_EQ(counters.lost_half_duplex, 1u);
+  EXPECT_EQ(counters.lost_collision, b.driver->stats().lost_collision);
+  EXPECT_EQ(counters.lost_half_duplex, b.driver->stats().lost_half_duplex);
+  EXPECT_TRUE(b.received.empty());
+}
+
+TEST_F(SimDriverTest, TimingForTheSlotBudgetIsTheSimulatorsOwnExactly) {
+  TestNode a(scheduler_, channel_, 1, 0);
+  EXPECT_EQ(a.driver->packet_air_time(5, 8), link::packet_air_time(*link::find_rate(5), 8));
+  EXPECT_EQ(a.driver->packet_air_time(0, 1), milliseconds(3500));
+  EXPECT_EQ(a.driver->ack_time(5), milliseconds(500 + 700));
+  EXPECT_EQ(a.driver->sound_speed(), 1500);
+}
+
 TEST_F(SimDriverTest, BackToBackPacketsDoNotCollide) {
   TestNode a(scheduler_, channel_, 1, -1500), b(scheduler_, channel_, 2, 0), c(scheduler_, channel_, 3, 1500);
   a.send(2, {"a"}, 0, false);

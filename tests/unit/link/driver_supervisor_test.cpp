@@ -20,6 +20,7 @@ struct Script {
   bool fail_transmit = false;
   bool throw_other = false;  // a non-DriverError exception (a driver bug)
   int built = 0, starts = 0, stops = 0, works = 0;
+  DriverCounters lost_by_each;  // what every driver built reports
   std::vector<v1::ModemTransmission> transmitted;
 };
 
@@ -40,6 +41,10 @@ class FakeDriver final : public Driver {
     if (script_.fail_transmit) throw DriverError("/dev/ttyFAKE: write failed");
     script_.transmitted.push_back(tx);
   }
+  std::chrono::nanoseconds packet_air_time(int32_t, uint32_t num_frames) const override {
+    return milliseconds(100) * num_frames;
+  }
+  DriverCounters counters() const override { return script_.lost_by_each; }
 
  private:
   Script& script_;
@@ -138,6 +143,35 @@ TEST_F(DriverSupervisorTest, DoWorkFailureStopsAndRestartsTheDriver) {
   EXPECT_EQ(supervisor->status().state, DriverState::kRunning);
   EXPECT_EQ(states_, (std::vector<DriverState>{DriverState::kRunning, DriverState::kRestarting,
                                                DriverState::kRunning}));
+}
+
+TEST_F(DriverSupervisorTest, CountersAddUpAcrossRestarts) {
+  script_.lost_by_each = {3, 1};
+  auto supervisor = make(2, 60);
+  EXPECT_EQ(supervisor->counters().lost_half_duplex, 3u);
+  EXPECT_EQ(supervisor->counters().lost_collision, 1u);
+  script_.fail_work = true;
+  scheduler_.run_until(t0_ + milliseconds(150));
+  ASSERT_EQ(supervisor->driver(), nullptr);
+  // Down: what the failed driver counted is kept.
+  EXPECT_EQ(supervisor->counters().lost_half_duplex, 3u);
+  script_.fail_work = false;
+  scheduler_.run_until(t0_ + milliseconds(2200));
+  ASSERT_NE(supervisor->driver(), nullptr);
+  // The new driver's own count comes on top.
+  EXPECT_EQ(supervisor->counters().lost_half_duplex, 6u);
+  EXPECT_EQ(supervisor->counters().lost_collision, 2u);
+}
+
+TEST_F(DriverSupervisorTest, TimingIsTheRunningDriversOrTheDefaultsWhileDown) {
+  auto supervisor = make(2, 60);
+  EXPECT_EQ(supervisor->packet_air_time(5, 3), milliseconds(300));
+  script_.fail_work = true;
+  scheduler_.run_until(t0_ + milliseconds(150));
+  ASSERT_EQ(supervisor->driver(), nullptr);
+  // The defaults: the rate table (0.3 s + 3 x 2048 bits / 5300 bps) + 10 %.
+  EXPECT_NEAR(std::chrono::duration<double>(supervisor->packet_air_time(5, 3)).count(),
+              (0.3 + 3 * 2048.0 / 5300) * 1.1, 1e-6);
 }
 
 TEST_F(DriverSupervisorTest, TransmissionWhileDownIsReportedFailed) {

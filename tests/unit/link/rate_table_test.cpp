@@ -76,6 +76,14 @@ TEST(TransmissionRulesTest, PrepareCheckAckPoll) {
   auto answer = make_poll_response(request, 7);
   EXPECT_EQ(answer.src(), 7);
   EXPECT_EQ(answer.dest(), 1);
+  EXPECT_FALSE(answer.has_time());
+  // A poll heard, ending at `time`: the answer is dated from the start of
+  // its reception, a mini-packet (0.7 s) earlier, for the slot budget.
+  request.set_time(1000.0);
+  request.set_slot_seconds(12);
+  answer = make_poll_response(request, 7);
+  EXPECT_DOUBLE_EQ(answer.time(), 999.3);
+  EXPECT_EQ(answer.slot_seconds(), 12);
 }
 
 }  // namespace

@@ -45,6 +45,14 @@ class FakeDriver final : public Driver {
     sent.push_back(out);
   }
   void receive(const v1::ModemTransmission& t) { callbacks_.on_receive(t); }
+  // A poll for us heard: the driver asks for our data on its own.
+  void answer_poll(const v1::ModemTransmission& response) {
+    v1::ModemTransmission out = response;
+    out.set_max_frame_bytes(8);
+    out.set_max_num_frames(2);
+    callbacks_.on_data_request(&out);
+    sent.push_back(out);
+  }
 
   DriverCallbacks callbacks_;
   std::vector<v1::ModemTransmission> initiated, sent;
@@ -62,6 +70,15 @@ class FakeMac final : public mac::Mac {
     v1::ModemTransmission t;
     t.set_src(src);
     t.set_dest(dest);
+    transmit_(t);
+  }
+  // A slot of `seconds` at `rate` that began at `start` (seconds since 1970).
+  void timed_slot(int32_t rate, double seconds, double start) {
+    v1::ModemTransmission t;
+    t.set_src(1);
+    t.set_rate(rate);
+    t.set_slot_seconds(seconds);
+    t.set_time(start);
     transmit_(t);
   }
   Transmit transmit_;
@@ -174,6 +191,75 @@ TEST_F(LinkControllerTest, ReceivedFramesAreSplitAndDeliveredWhenForUs) {
   EXPECT_EQ(delivered_, (std::vector<std::string>{"src: 3 dest: 1 value: 5", "src: 3 dest: 0 value: 7"}));
   EXPECT_EQ(mac_.heard, 1);
   EXPECT_EQ(link_->stats().messages_delivered, 2u);
+}
+
+// The fake driver's timing is driver.h's default (rate table + 10 %): at
+// rate 5 with an ACK and the 2000 m guard, one frame needs 4.74 s of the
+// slot, two 5.17 s.
+TEST_F(LinkControllerTest, AsksTheQueuesOnlyForTheFramesThatFitTheSlot) {
+  for (int v = 1; v <= 3; ++v) submit("dest: 2 value: " + std::to_string(v));
+  mac_.timed_slot(5, 5.0, clock_.now_seconds());
+  ASSERT_EQ(driver_.sent.size(), 1u);
+  EXPECT_EQ(driver_.sent[0].max_num_frames(), 1u);
+  ASSERT_EQ(driver_.sent[0].frame_size(), 1);
+  EXPECT_EQ(codec_.decode(driver_.sent[0].frame(0)).size(), 2u);
+  // A longer slot: the rate's (the driver's) two frames.
+  mac_.timed_slot(5, 5.2, clock_.now_seconds());
+  EXPECT_EQ(driver_.sent[1].max_num_frames(), 2u);
+}
+
+TEST_F(LinkControllerTest, ARequestLateInItsSlotGetsWhatIsLeftOfIt) {
+  link_ = std::make_unique<LinkController>(
+      1, *queues_, mac_, driver_, [](queue::ReceivedMessage, const v1::ModemTransmission&) {},
+      LinkOptions{&clock_, kDefaultMaxRangeM});
+  link_->start();
+  for (int v = 1; v <= 3; ++v) submit("dest: 2 value: " + std::to_string(v));
+  // 6 s slot, begun 1 s ago: 5 s are left, one frame's worth.
+  mac_.timed_slot(5, 6.0, clock_.now_seconds() - 1.0);
+  ASSERT_EQ(driver_.sent.size(), 1u);
+  EXPECT_EQ(driver_.sent[0].frame_size(), 1);
+  // With the guard for 100 m instead, the same 5 s hold both frames.
+  link_ = std::make_unique<LinkController>(
+      1, *queues_, mac_, driver_, [](queue::ReceivedMessage, const v1::ModemTransmission&) {},
+      LinkOptions{&clock_, 100});
+  link_->start();
+  mac_.timed_slot(5, 6.0, clock_.now_seconds() - 1.0);
+  ASSERT_EQ(driver_.sent.size(), 2u);
+  EXPECT_EQ(driver_.sent[1].frame_size(), 2);
+}
+
+TEST_F(LinkControllerTest, AnAnswerToAPollAlsoAllowsForThePollsTravel) {
+  link_ = std::make_unique<LinkController>(
+      1, *queues_, mac_, driver_, [](queue::ReceivedMessage, const v1::ModemTransmission&) {},
+      LinkOptions{&clock_, kDefaultMaxRangeM});
+  link_->start();
+  for (int v = 1; v <= 3; ++v) submit("dest: 2 value: " + std::to_string(v));
+  // Dated 1.2 s ago (the poll's arrival began, then the turnaround) in a
+  // 7.5 s slot: 6.3 s left, less the poll's travel from up to 2000 m
+  // (1.33 s): 4.97 s, one frame's worth.
+  v1::ModemTransmission answer;
+  answer.set_src(1);
+  answer.set_rate(5);
+  answer.set_slot_seconds(7.5);
+  answer.set_time(clock_.now_seconds() - 1.2);
+  driver_.answer_poll(answer);
+  ASSERT_EQ(driver_.sent.size(), 1u);
+  EXPECT_EQ(driver_.sent[0].max_num_frames(), 1u);
+  EXPECT_EQ(driver_.sent[0].frame_size(), 1);
+  // The MAC's own slot, dated alike, has its whole 6.3 s: two frames.
+  mac_.timed_slot(5, 7.5, clock_.now_seconds() - 1.2);
+  ASSERT_EQ(driver_.sent.size(), 2u);
+  EXPECT_EQ(driver_.sent[1].max_num_frames(), 2u);
+}
+
+TEST_F(LinkControllerTest, ASlotTooShortForOneFrameSendsNothingAndKeepsTheQueue) {
+  submit("dest: 2 value: 1");
+  mac_.timed_slot(5, 4.0, clock_.now_seconds());
+  ASSERT_EQ(driver_.sent.size(), 1u);
+  EXPECT_EQ(driver_.sent[0].max_num_frames(), 0u);
+  EXPECT_EQ(driver_.sent[0].frame_size(), 0);  // not even the empty broadcast
+  EXPECT_EQ(queues_->find_queue("lt.Status")->size(), 1u);
+  EXPECT_EQ(queues_->stats("lt.Status").sent, 0u);
 }
 
 TEST_F(LinkControllerTest, StopStopsMacAndDriver) {

@@ -82,6 +82,14 @@ TEST(MacFactory, SilentNeverTransmits) {
   EXPECT_TRUE(driver.sent.empty());
 }
 
+TEST(MacFactory, MaxRangeMustBeAFiniteDistance) {
+  const std::string negative = error_of("name: 'fixed' slot { src: 1 seconds: 10 } max_range_m: -1");
+  EXPECT_NE(negative.find("mac.max_range_m must be a finite number of metres >= 0"), std::string::npos) << negative;
+  EXPECT_NE(error_of("name: 'none' max_range_m: inf").find("mac.max_range_m"), std::string::npos);
+  EXPECT_EQ(error_of("name: 'fixed' slot { src: 1 seconds: 10 } max_range_m: 0"), "");
+  EXPECT_EQ(error_of("name: 'fixed' slot { src: 1 seconds: 10 } max_range_m: 3000"), "");
+}
+
 TEST(MacFactory, ClearErrors) {
   const std::string unknown = error_of("name: 'aloha'");
   EXPECT_NE(unknown.find("\"aloha\" is unknown"), std::string::npos) << unknown;

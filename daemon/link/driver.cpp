@@ -1,0 +1,31 @@
+#include "link/driver.h"
+
+#include "link/rate_table.h"
+
+namespace acomms::link {
+
+namespace {
+
+std::chrono::nanoseconds with_margin(std::chrono::nanoseconds time) {
+  return std::chrono::nanoseconds(static_cast<int64_t>(static_cast<double>(time.count()) * (1 + kAirTimeMargin)));
+}
+
+}  // namespace
+
+DriverCounters& DriverCounters::operator+=(const DriverCounters& other) {
+  lost_half_duplex += other.lost_half_duplex;
+  lost_collision += other.lost_collision;
+  return *this;
+}
+
+std::chrono::nanoseconds Driver::packet_air_time(int32_t rate, uint32_t num_frames) const {
+  const ModemRate* row = find_rate(rate);
+  if (row == nullptr) return std::chrono::nanoseconds(0);
+  return with_margin(link::packet_air_time(*row, num_frames));
+}
+
+std::chrono::nanoseconds Driver::ack_time(int32_t) const { return with_margin(kTurnaround + kMiniPacket); }
+
+double Driver::sound_speed() const { return kNominalSoundSpeed; }
+
+}  // namespace acomms::link
