@@ -12,6 +12,8 @@ packages=(
   libcrypto++-dev libsqlite3-dev
   # header-only
   libspdlog-dev libfmt-dev libasio-dev libcli11-dev
+  # header-only: Eigen, for the position-telemetry Kalman filter (daemon/telemetry)
+  libeigen3-dev
 )
 if [[ "${1:-}" == "--test" ]]; then
   # clang and its runtime give libFuzzer with ASan/UBSan for the fuzz targets

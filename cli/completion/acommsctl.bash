@@ -20,7 +20,7 @@ _acommsctl() {
   for ((i = 1; i < COMP_CWORD; i++)); do
     word="${COMP_WORDS[i]}"
     case "${path:+$path }$word" in
-      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link cycle"|"events"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"completion") path="${path:+$path }$word" ;;
+      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link cycle"|"events"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"completion") path="${path:+$path }$word" ;;
     esac
   done
   case "$path" in
@@ -158,7 +158,7 @@ _acommsctl() {
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "queue-market mac-discovery --help -h --socket -s --timeout --json" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "queue-market mac-discovery telemetry --help -h --socket -s --timeout --json" -- "$cur")) ;;
     "sim queue-market")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -171,6 +171,12 @@ _acommsctl() {
         --ids|--start|--slot|--coolness|--p-collide|--expire-cycles|--horizon-cycles|--blank-rule|--seed|--sizes|--trials|--start-window-cycles|--timeout) COMPREPLY=(); return ;;
       esac
       COMPREPLY=($(compgen -W "--help -h --ids --start --slot --coolness --p-collide --expire-cycles --horizon-cycles --blank-rule --seed --monte-carlo --sizes --trials --start-window-cycles --socket -s --timeout --json" -- "$cur")) ;;
+    "sim telemetry")
+      case "$prev" in
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --track|--generate|--duration|--observer|--model|--tau|--precision|--speed|--sigma-j2|--r|--bounds|--full-every|--loss|--packet-bits|--seed|--timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "--help -h --track --generate --duration --observer --model --tau --precision --speed --sigma-j2 --r --bounds --full-every --loss --packet-bits --seed --socket -s --timeout --json" -- "$cur")) ;;
     "completion")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
