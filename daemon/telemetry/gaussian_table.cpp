@@ -18,6 +18,7 @@ int64_t sigma16_of_variance(double variance) {
 std::vector<uint32_t> gaussian_frequencies(int32_t d_min, int32_t d_max, int64_t mean16,
                                            int64_t sigma16) {
   constexpr int kPanels = 8;  // Simpson panels per unit bin (even)
+  constexpr double kNegligible = 40.5;
   const size_t bins = static_cast<size_t>(d_max - d_min);
   const double mean = static_cast<double>(mean16) / 16;
   const double sigma = static_cast<double>(sigma16) / 16;
@@ -26,7 +27,10 @@ std::vector<uint32_t> gaussian_frequencies(int32_t d_min, int32_t d_max, int64_t
   std::vector<double> density(bins * kPanels + 1);
   for (size_t j = 0; j < density.size(); ++j) {
     const double u = (d_min - 0.5 + static_cast<double>(j) / kPanels) - mean;
-    density[j] = exp_neg(u * u * inv_two_var);
+    // Beyond 9 sigma the density (< e^-40.5) cannot lift a bin above its
+    // floor of 1 (it would need 2^-16 of the total): skip the exp.
+    const double x = u * u * inv_two_var;
+    density[j] = x > kNegligible ? 0 : exp_neg(x);
   }
   std::vector<double> weight(bins);
   double total = 0;
