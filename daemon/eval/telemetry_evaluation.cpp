@@ -182,7 +182,7 @@ std::string format_telemetry_table(const std::vector<TelemetryRun>& runs) {
       "observer     model     positions  deltas  fulls  delta_bits  delta_std  bits_per_position  "
       "delta_vs_96  overall_vs_96";
   const bool loss = !runs.empty() && runs[0].with_loss;
-  if (loss) out += "  loss_bits_per_position  newest_bits_per_position  extra_latency_s";
+  if (loss) out += "  resend_bits_per_position  newest_full_bits_per_position  extra_latency_s";
   out += "\n";
   char line[512];
   for (const TelemetryRun& r : runs) {
@@ -194,7 +194,7 @@ std::string format_telemetry_table(const std::vector<TelemetryRun>& runs) {
                   fixed(r.delta_compression_pct, 1).c_str(), fixed(r.overall_compression_pct, 1).c_str());
     out += line;
     if (loss) {
-      std::snprintf(line, sizeof line, "  %22s  %24s  %15s", fixed(r.loss_delta_bits_per_position, 2).c_str(),
+      std::snprintf(line, sizeof line, "  %24s  %29s  %15s", fixed(r.loss_delta_bits_per_position, 2).c_str(),
                     fixed(r.loss_newest_bits_per_position, 2).c_str(), fixed(r.loss_extra_latency_s, 1).c_str());
       out += line;
     }
@@ -221,8 +221,8 @@ std::string format_telemetry_json(const std::string& track, uint64_t fixes, cons
            ",\"full_bits\":" + std::to_string(r.full_bits) + ",\"delta_compression_pct\":" +
            fixed(r.delta_compression_pct, 2) + ",\"overall_compression_pct\":" + fixed(r.overall_compression_pct, 2);
     if (r.with_loss) {
-      out += ",\"loss_bits_per_position\":" + fixed(r.loss_delta_bits_per_position, 4) +
-             ",\"newest_bits_per_position\":" + fixed(r.loss_newest_bits_per_position, 4) +
+      out += ",\"resend_bits_per_position\":" + fixed(r.loss_delta_bits_per_position, 4) +
+             ",\"newest_full_bits_per_position\":" + fixed(r.loss_newest_bits_per_position, 4) +
              ",\"extra_latency_s\":" + fixed(r.loss_extra_latency_s, 3) + ",\"packets\":" +
              std::to_string(r.loss_packets);
     }

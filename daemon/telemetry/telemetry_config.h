@@ -57,7 +57,8 @@ struct TelemetryConfig {
 void validate(const TelemetryConfig& config);
 
 // A hash of every field that changes what is sent (FNV-1a over the fields'
-// bytes): equal configs have equal fingerprints.
+// in-memory bytes, so for state kept on the machine that wrote it, never for
+// the wire): equal configs have equal fingerprints.
 uint64_t fingerprint(const TelemetryConfig& config);
 
 }  // namespace acomms::telemetry

@@ -25,7 +25,12 @@ DecodedMessage TelemetryDecoder::decode(dccl::BitReader& in) {
   const FullBody body = read_full_body(in, region_);
   message.time_s = body.time_of_day_s;
   message.grid = body.position;
-  if (history_.in_step && header.sequence == history_.sequence) {
+  // A resent full arrives right after itself (resends keep the order), so
+  // it is a duplicate only if nothing came since and it says the same. Any
+  // other full resets, even with the last sequence number: a sender that
+  // restarted without its state starts its count again.
+  if (history_.in_step && header.sequence == history_.sequence && history_.since_full.size() == 1 &&
+      history_.since_full[0] == body.position && history_.time_s == body.time_of_day_s) {
     message.outcome = DecodeOutcome::kDuplicate;
     return message;
   }

@@ -79,7 +79,7 @@ TEST(TelemetryCli, JsonWithLossReportsResendCostAndLatency) {
   ASSERT_EQ(result.exit_code, 0) << result.err;
   ASSERT_EQ(lines_of(result.out).size(), 1u) << result.out;
   for (const char* key : {"\"observer\":\"kalman\"", "\"model\":\"adaptive\"", "\"delta_bits_mean\":",
-                          "\"loss_bits_per_position\":", "\"newest_bits_per_position\":", "\"extra_latency_s\":"})
+                          "\"resend_bits_per_position\":", "\"newest_full_bits_per_position\":", "\"extra_latency_s\":"})
     EXPECT_NE(result.out.find(key), std::string::npos) << key << " in " << result.out;
 }
 

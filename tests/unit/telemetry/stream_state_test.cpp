@@ -114,6 +114,33 @@ TEST(StreamState, AfterALostDeltaTheDecoderWaitsForAFullAndIsInStepAgain) {
   EXPECT_EQ(decoder.decode(delta.bytes).grid, delta.position);
 }
 
+TEST(StreamState, AFullFromARestartedSenderResetsEvenWithTheLastSequenceNumber) {
+  const std::vector<Sample> track = samples();
+  TelemetryConfig config;
+  TelemetryDecoder decoder(config);
+  TelemetryEncoder before(config);
+  // the sender's messages 1..16 (sequence 1..15, then 0) reach the receiver
+  for (size_t i = 0; i < 16; ++i) decoder.decode(before.encode(track[i]).bytes);
+  // it restarts without state and counts again: its full is sequence 1
+  TelemetryEncoder after(config);
+  for (size_t i = 0; i < 15; ++i) {
+    after.request_full();
+    after.encode(track[i]);
+  }
+  after.request_full();
+  const EncodedMessage full = after.encode(track[20]);
+  ASSERT_EQ(full.kind, MessageKind::kFull);
+  ASSERT_EQ(full.sequence, 0u);
+  const DecodedMessage decoded = decoder.decode(full.bytes);
+  EXPECT_EQ(decoded.outcome, DecodeOutcome::kPosition);
+  EXPECT_EQ(decoded.grid, full.position);
+  // resent right after itself, the same full is a duplicate
+  EXPECT_EQ(decoder.decode(full.bytes).outcome, DecodeOutcome::kDuplicate);
+  const EncodedMessage delta = after.encode(track[21]);
+  ASSERT_EQ(delta.kind, MessageKind::kDelta);
+  EXPECT_EQ(decoder.decode(delta.bytes).grid, delta.position);
+}
+
 TEST(StreamState, BadInputIsAnErrorNotACrash) {
   TelemetryConfig config;
   TelemetryDecoder decoder(config);
