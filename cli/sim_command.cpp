@@ -12,6 +12,7 @@
 #include "eval/discovery_simulation.h"
 #include "eval/market_simulation.h"
 #include "mac/blank_slot.h"
+#include "sim_telemetry_command.h"
 
 namespace acomms::cli {
 namespace {
@@ -237,11 +238,12 @@ void add_mac_discovery_command(CLI::App* sim) {
 
 }  // namespace
 
-CLI::App* add_sim_command(CLI::App& app, const GlobalOptions&) {
+CLI::App* add_sim_command(CLI::App& app, const GlobalOptions& options) {
   CLI::App* sim = app.add_subcommand("sim", "Offline simulations (no daemon needed)");
   sim->require_subcommand(1);
   add_queue_market_command(sim);
   add_mac_discovery_command(sim);
+  add_sim_telemetry_command(sim, options);
   return sim;
 }
 

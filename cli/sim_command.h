@@ -5,6 +5,7 @@
 //                      daemon/eval/market_simulation.h)
 //   sim mac-discovery  the auto-discovery TDMA MAC on a simulated channel
 //                      (see daemon/eval/discovery_simulation.h)
+//   sim telemetry      position telemetry on a track (sim_telemetry_command.h)
 // Further simulations are added as subcommands of `sim` in add_sim_command.
 
 #include <CLI/CLI.hpp>

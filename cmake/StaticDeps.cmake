@@ -85,6 +85,11 @@ target_compile_definitions(acomms::spdlog INTERFACE FMT_HEADER_ONLY SPDLOG_FMT_E
 add_library(acomms::asio INTERFACE IMPORTED GLOBAL)
 target_compile_definitions(acomms::asio INTERFACE ASIO_STANDALONE ASIO_NO_DEPRECATED)
 add_library(acomms::cli11 INTERFACE IMPORTED GLOBAL)
+# Eigen (the telemetry Kalman filter) lives under include/eigen3/, not on the
+# default include path.
+find_path(ACOMMS_EIGEN3_INCLUDE_DIR Eigen/Core PATH_SUFFIXES eigen3 REQUIRED)
+add_library(acomms::eigen INTERFACE IMPORTED GLOBAL)
+target_include_directories(acomms::eigen SYSTEM INTERFACE "${ACOMMS_EIGEN3_INCLUDE_DIR}")
 
 find_program(ACOMMS_PROTOC protoc REQUIRED)
 find_program(ACOMMS_GRPC_CPP_PLUGIN grpc_cpp_plugin REQUIRED)

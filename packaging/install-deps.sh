@@ -14,6 +14,8 @@ packages=(
   libspdlog-dev libfmt-dev libasio-dev libcli11-dev
   # PNG output of `acommsctl gram tl --png` (stb_image_write)
   libstb-dev
+  # header-only: Eigen, for the position-telemetry Kalman filter (daemon/telemetry)
+  libeigen3-dev
 )
 if [[ "${1:-}" == "--test" ]]; then
   # clang and its runtime give libFuzzer with ASan/UBSan for the fuzz targets

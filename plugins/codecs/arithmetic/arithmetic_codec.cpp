@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "arithmetic/arithmetic_coder.h"
+#include "dccl/arithmetic_coder.h"
 #include "dccl/numeric.h"
 
 namespace acomms::codecs {
@@ -78,9 +78,9 @@ class ArithmeticCodec final : public dccl::FieldCodec {
     frequencies_.insert(frequencies_.end(), model.frequency.begin(), model.frequency.end());
     uint64_t total = 0;
     for (uint32_t f : frequencies_) total += f;
-    if (model.is_adaptive && total + max_ > arith::kMaxTotalFrequency) {
+    if (model.is_adaptive && total + max_ > dccl::arith::kMaxTotalFrequency) {
       ctx.fail("adaptive arithmetic model \"" + model.name + "\" could exceed total frequency " +
-               std::to_string(arith::kMaxTotalFrequency) + " over max_repeat " + std::to_string(max_) +
+               std::to_string(dccl::arith::kMaxTotalFrequency) + " over max_repeat " + std::to_string(max_) +
                " symbols");
     }
     // Values are compared in the field's own type, so a float field holding
@@ -106,8 +106,8 @@ class ArithmeticCodec final : public dccl::FieldCodec {
     // Coded into a buffer of our own so debug_assert can read it back.
     std::string buffer;
     BitWriter bits(&buffer);
-    arith::FrequencyTable table(frequencies_);
-    arith::Encoder encoder(bits);
+    dccl::arith::FrequencyTable table(frequencies_);
+    dccl::arith::Encoder encoder(bits);
     for (size_t s : symbols) {
       encoder.encode(table, s);
       if (model_.is_adaptive) table.increment(s);
@@ -124,8 +124,8 @@ class ArithmeticCodec final : public dccl::FieldCodec {
   }
 
   void decode(BitReader& in, pb::Message* msg, const dccl::DecodeContext&) const override {
-    arith::FrequencyTable table(frequencies_);
-    arith::Decoder decoder(in);
+    dccl::arith::FrequencyTable table(frequencies_);
+    dccl::arith::Decoder decoder(in);
     for (uint32_t n = 0; n < max_; ++n) {
       const size_t s = decoder.decode(table);
       if (s == kEof) break;
@@ -268,8 +268,8 @@ class ArithmeticCodec final : public dccl::FieldCodec {
   // on the last bit written.
   void check_decodes(const std::string& buffer, uint64_t length, const std::vector<size_t>& symbols) const {
     BitReader in(buffer);
-    arith::FrequencyTable table(frequencies_);
-    arith::Decoder decoder(in);
+    dccl::arith::FrequencyTable table(frequencies_);
+    dccl::arith::Decoder decoder(in);
     for (size_t expected : symbols) {
       size_t got;
       try {

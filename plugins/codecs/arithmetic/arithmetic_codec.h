@@ -28,7 +28,7 @@
 //   otherwise the list ends there with EOF, as the reference does.
 // - If eof_frequency is 0 a list shorter than max_repeat cannot be sent and
 //   encode() throws in either mode.
-// - Bits come from arith::Encoder (arithmetic_coder.h): the fewest that pin
+// - Bits come from dccl::arith::Encoder (arithmetic_coder.h): the fewest that pin
 //   the final interval, so the field's end is known without a length.
 // - Adaptive models restart from the registered frequencies for every
 //   message (and every field), so each message decodes on its own.

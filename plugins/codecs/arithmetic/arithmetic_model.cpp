@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "arithmetic/arithmetic_coder.h"
+#include "dccl/arithmetic_coder.h"
 #include "dccl/error.h"
 #include "dccl/numeric.h"
 
@@ -87,9 +87,9 @@ void ArithmeticModel::validate() const {
     if (frequency[i] == 0) fail(*this, "frequency of symbol " + std::to_string(i) + " is 0");
     total += frequency[i];
   }
-  if (total > arith::kMaxTotalFrequency) {
+  if (total > dccl::arith::kMaxTotalFrequency) {
     fail(*this, "total frequency " + std::to_string(total) + " exceeds " +
-                    std::to_string(arith::kMaxTotalFrequency));
+                    std::to_string(dccl::arith::kMaxTotalFrequency));
   }
 }
 

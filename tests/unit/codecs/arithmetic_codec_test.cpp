@@ -19,7 +19,7 @@
 #include <fstream>
 #include <random>
 
-#include "arithmetic/arithmetic_coder.h"
+#include "dccl/arithmetic_coder.h"
 #include "dccl/codec.h"
 #include "dccl/hex.h"
 #include "acomms/v1/config.pb.h"
@@ -30,6 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 namespace pb = google::protobuf;
+namespace arith = dccl::arith;
 
 using dccl::from_hex;
 using dccl::to_hex;

@@ -1,12 +1,21 @@
 #pragma once
-// The integer arithmetic coder behind the "dccl.arithmetic" field codec: the
+// The integer arithmetic coder shared by the "dccl.arithmetic" field codec
+// (plugins/codecs/arithmetic) and position telemetry (daemon/telemetry): the
 // 32-bit coder of Witten, Neal & Cleary ("Arithmetic coding for data
 // compression", CACM 1987), with two changes that make a coded field a
 // self-delimiting run of bits inside a DCCL message:
 //
 // - The encoder does not flush a fixed two bits: finish() writes the fewest
 //   bits b such that every continuation of b lies inside the final interval
-//   (the shortest dyadic interval inside it).
+//   (the shortest dyadic interval inside it). After renormalisation the
+//   interval straddles 1/2 and spans more than 1/4, so this is at most two
+//   bits plus the pending follow bits, and it is exactly the end rule of
+//   Schneider (2013) eq. 3.30-3.32 (shared/spec/telemetry.md section 4):
+//   [0, 1) -> nothing (with pending bits: 0, then the follow bits);
+//   [low, 1) -> 1; [0, high) -> 0; low < 1/4, high >= 1/2 -> 01;
+//   low < 1/2, high >= 3/4 -> 10. One tie is ours to break: with low exactly
+//   1/4 both 01 and 10 fit in two bits and finish() writes 01 (the lowest
+//   block at or above low); the decoder accepts either.
 // - The decoder does not preload 32 bits. It keeps the range of values the
 //   bits read so far allow (the rest all zeros .. all ones) and reads one more
 //   bit only while the two ends of that range decode as different symbols.
@@ -22,7 +31,7 @@
 
 #include "dccl/bitstream.h"
 
-namespace acomms::codecs::arith {
+namespace acomms::dccl::arith {
 
 // Code values are 32 bits: the interval [low, high] lives in [0, 2^32 - 1].
 inline constexpr uint64_t kTop = (uint64_t{1} << 32) - 1;
@@ -95,4 +104,4 @@ class Decoder {
   unsigned unknown_ = 32;
 };
 
-}  // namespace acomms::codecs::arith
+}  // namespace acomms::dccl::arith

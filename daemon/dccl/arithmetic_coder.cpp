@@ -1,10 +1,10 @@
-#include "arithmetic/arithmetic_coder.h"
+#include "dccl/arithmetic_coder.h"
 
 #include <algorithm>
 
 #include "dccl/error.h"
 
-namespace acomms::codecs::arith {
+namespace acomms::dccl::arith {
 
 FrequencyTable::FrequencyTable(const std::vector<uint32_t>& frequencies) {
   cumulative_.reserve(frequencies.size() + 1);
@@ -129,4 +129,4 @@ size_t Decoder::decode(const FrequencyTable& table) {
   return symbol;
 }
 
-}  // namespace acomms::codecs::arith
+}  // namespace acomms::dccl::arith

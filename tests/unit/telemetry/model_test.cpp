@@ -1,0 +1,116 @@
+// The probability models (spec section 3) and the deterministic arithmetic
+// their tables are built from.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "telemetry/deterministic_math.h"
+#include "telemetry/gaussian_table.h"
+#include "telemetry/probability_models.h"
+
+namespace acomms::telemetry {
+namespace {
+
+double bits_of(const dccl::arith::FrequencyTable& table, size_t symbol) {
+  return std::log2(static_cast<double>(table.total()) / static_cast<double>(table.frequency(symbol)));
+}
+
+TEST(DeterministicMath, ExpNegMatchesTheLibraryToTheLastFewBits) {
+  // (708: below it the results are normal doubles; subnormals lose bits)
+  for (double x = 0; x < 708; x += 0.0371) EXPECT_NEAR(exp_neg(x), std::exp(-x), 4e-16 * std::exp(-x)) << x;
+  for (double x = 708; x < 745; x += 0.37) EXPECT_NEAR(exp_neg(x), std::exp(-x), 1e-323) << x;
+  EXPECT_EQ(exp_neg(0), 1.0);
+  EXPECT_EQ(exp_neg(800), 0.0);
+}
+
+TEST(DeterministicMath, IntegerSquareRootsAndRounding) {
+  for (uint64_t n = 0; n < 100000; ++n) {
+    const uint64_t r = isqrt(n);
+    ASSERT_LE(r * r, n);
+    ASSERT_GT((r + 1) * (r + 1), n);
+    ASSERT_EQ(isqrt_rounded(n), static_cast<uint64_t>(std::llround(std::sqrt(static_cast<double>(n))))) << n;
+  }
+  EXPECT_EQ(isqrt(~uint64_t{0}), 4294967295u);
+  EXPECT_EQ(round_to_int(2.5), 3);
+  EXPECT_EQ(round_to_int(-2.5), -3);
+  EXPECT_EQ(round_to_int(-2.49), -2);
+}
+
+TEST(UniformModel, EveryInnovationCostsLog2Of101Bits) {
+  UniformModel model(-50, 51);
+  const auto& table = model.table(0, 1.0);
+  ASSERT_EQ(table.size(), 101u);
+  EXPECT_EQ(table.total(), 101u);
+  EXPECT_NEAR(bits_of(table, 0), std::log2(101.0), 1e-12);
+}
+
+TEST(GaussianModel, TableIsSymmetricPeakedAndNeverZero) {
+  GaussianModel model(-50, 51);
+  const auto& table = model.table(0, 15.0 * 15.0);  // fixed speed: sigma = s tau = 15 m
+  EXPECT_EQ(model.symbol_of(0), 50u);
+  for (size_t s = 0; s < table.size(); ++s) {
+    EXPECT_GE(table.frequency(s), 1u);
+    EXPECT_EQ(table.frequency(s), table.frequency(100 - s)) << s;
+    if (s < 50) {
+      EXPECT_LE(table.frequency(s), table.frequency(s + 1));
+    }
+  }
+  // Bin probabilities follow the density: p(0) / p(15) ~ exp(1/2).
+  EXPECT_NEAR(static_cast<double>(table.frequency(50)) / table.frequency(65), std::exp(0.5), 0.01);
+  EXPECT_LE(table.total(), kGaussianScale + 101);
+  EXPECT_GE(table.total(), kGaussianScale + 101 - 101);
+}
+
+TEST(GaussianModel, NarrowVarianceMakesZeroNearlyFree) {
+  GaussianModel model(-50, 51);
+  const auto& table = model.table(0, 0.001);  // clamped to sigma = 1/4
+  // The integrated bin: p(0) = erf(0.5 / (0.25 sqrt 2)) = 0.9545 -> 0.067 bits,
+  // plus what the floor of 1 per bin takes (101 / 2^16: 0.0023 bits).
+  EXPECT_NEAR(bits_of(table, 50), -std::log2(std::erf(0.5 / (0.25 * std::sqrt(2.0)))), 0.004);
+  EXPECT_GT(bits_of(table, 52), 15.0);  // far tails cost about log2(2^16) bits
+}
+
+TEST(AdaptiveModel, CountsWhatWasSentAndForgetsAtAFull) {
+  AdaptiveModel model(-50, 51);
+  model.observe(0, 3);
+  model.observe(0, 3);
+  model.observe(1, -50);
+  const auto& x = model.table(0, 0);
+  EXPECT_EQ(x.frequency(model.symbol_of(3)), 3u);  // N + 1
+  EXPECT_EQ(x.total(), 103u);                      // m + bins
+  EXPECT_EQ(model.table(1, 0).frequency(0), 2u);
+  EXPECT_EQ(model.table(2, 0).total(), 101u);
+  model.reset();
+  EXPECT_EQ(model.table(0, 0).total(), 101u);
+}
+
+TEST(LearnedModel, StartsAsTheObserversGaussian) {
+  LearnedModel learned(-50, 51);
+  GaussianModel gaussian(-50, 51);
+  const auto& a = learned.table(0, 40.0);
+  const auto& b = gaussian.table(0, 40.0);
+  for (size_t s = 0; s < a.size(); ++s) EXPECT_EQ(a.frequency(s), b.frequency(s));
+}
+
+TEST(LearnedModel, LearnsABiasedNarrowInnovationFasterThanTheAdaptiveCounts) {
+  LearnedModel learned(-50, 51);
+  AdaptiveModel adaptive(-50, 51);
+  double learned_bits = 0, adaptive_bits = 0;
+  const int innovations[] = {2, 3, 2, 2, 3, 1, 2, 3, 2, 2, 2, 3, 2, 1, 2, 2, 3, 2, 2, 2};
+  for (int d : innovations) {
+    learned_bits += bits_of(learned.table(0, 225), learned.symbol_of(d));
+    adaptive_bits += bits_of(adaptive.table(0, 225), adaptive.symbol_of(d));
+    learned.observe(0, d);
+    adaptive.observe(0, d);
+  }
+  EXPECT_LT(learned_bits, 0.6 * adaptive_bits) << learned_bits << " vs " << adaptive_bits;
+  // After the run, its table peaks at the innovations' mean.
+  const auto& table = learned.table(0, 225);
+  EXPECT_GT(table.frequency(learned.symbol_of(2)), table.frequency(learned.symbol_of(0)));
+  EXPECT_GT(table.frequency(learned.symbol_of(2)), table.frequency(learned.symbol_of(4)));
+}
+
+}  // namespace
+}  // namespace acomms::telemetry
