@@ -20,7 +20,7 @@ _acommsctl() {
   for ((i = 1; i < COMP_CWORD; i++)); do
     word="${COMP_WORDS[i]}"
     case "${path:+$path }$word" in
-      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link cycle"|"events"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"completion") path="${path:+$path }$word" ;;
+      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link cycle"|"events"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"completion") path="${path:+$path }$word" ;;
     esac
   done
   case "$path" in
@@ -221,7 +221,7 @@ _acommsctl() {
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "queue-market mac-discovery --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "queue-market mac-discovery telemetry --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "sim queue-market")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -240,6 +240,15 @@ _acommsctl() {
         --ids|--start|--slot|--coolness|--p-collide|--expire-cycles|--horizon-cycles|--blank-rule|--seed|--sizes|--trials|--start-window-cycles|--timeout) COMPREPLY=(); return ;;
       esac
       COMPREPLY=($(compgen -W "--help -h --ids --start --slot --coolness --p-collide --expire-cycles --horizon-cycles --blank-rule --seed --monte-carlo --sizes --trials --start-window-cycles --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "sim telemetry")
+      case "$prev" in
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --track|--generate|--duration|--observer|--model|--tau|--precision|--speed|--sigma-j2|--r|--bounds|--full-every|--loss|--packet-bits|--seed|--timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "--help -h --track --generate --duration --observer --model --tau --precision --speed --sigma-j2 --r --bounds --full-every --loss --packet-bits --seed --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "gram")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
