@@ -129,7 +129,8 @@ class GroupCommitWriter {
   bool prepare_savepoints(Batch& batch);
   void run_request(Batch& batch, size_t i);
   void commit(Batch& batch);
-  void lose_transaction(Batch& batch, size_t end, const std::string& reason);
+  void lose_transaction(Batch& batch, size_t end, const std::string& reason, int code);
+  void roll_back();
   void record_stats(const Batch& batch);
   void answer(const Batch& batch);
 
