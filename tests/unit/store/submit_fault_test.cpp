@@ -280,6 +280,23 @@ TEST_F(SubmitFaultTest, AFullDiskFailsEverySubmitWithResourceExhaustedNamingTheS
   expect_serving_again_and_consistent({});
 }
 
+TEST_F(SubmitFaultTest, ACheckpointFailingAfterTheCommitLeavesTheSubmitsAnsweredAndStored) {
+  // The commit is durable in the WAL; copying it into the main file (here
+  // after every commit) is SQLite's own later business. Its failure must not
+  // turn stored messages into errors: a client would submit them again.
+  writer_->submit([](store::Database& db) { db.exec("PRAGMA wal_autocheckpoint=1"); }).get();
+  auto results = submit_batch_under({VfsCall::kWrite, VfsFile::kMainDb, SQLITE_IOERR_WRITE, 0, true});
+  std::set<int64_t> answered;
+  for (const SubmitResult& r : results) {
+    EXPECT_TRUE(r.ok()) << r.text;
+    answered.insert(r.message_id);
+  }
+  EXPECT_EQ(answered.size(), static_cast<size_t>(kBatch));
+  EXPECT_EQ(stored_ids(), answered);
+  EXPECT_EQ(queued_ids(), answered);
+  expect_serving_again_and_consistent(answered);
+}
+
 TEST_F(SubmitFaultTest, AWriteFailingInsideItsSavepointFailsItsTransactionAndTheRestCommit) {
   // Batch: two Submits, a large write that spills to the WAL and meets a
   // one-time I/O error (SQLite then rolls the whole transaction back), two
