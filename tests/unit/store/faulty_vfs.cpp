@@ -117,7 +117,7 @@ int x_open(sqlite3_vfs*, sqlite3_filename name, sqlite3_file* file, int flags, i
   ours->base.pMethods = nullptr;
   ours->kind = (flags & SQLITE_OPEN_MAIN_DB) != 0 ? VfsFile::kMainDb
                : (flags & SQLITE_OPEN_WAL) != 0   ? VfsFile::kWal
-                                                  : VfsFile::kAny;
+                                                  : VfsFile::kOther;
   ours->real = reinterpret_cast<sqlite3_file*>(ours + 1);
   if (int rc = FaultyVfs::instance().fault_for(VfsCall::kOpen, ours->kind)) return rc;
   int rc = real_vfs->xOpen(real_vfs, name, ours->real, flags, out_flags);

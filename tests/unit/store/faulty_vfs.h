@@ -24,9 +24,10 @@ namespace acomms::store::testing {
 
 // The VFS calls a fault can hit.
 enum class VfsCall { kOpen, kRead, kWrite, kSync, kTruncate, kLock, kShmMap, kShmLock };
-// Which file a call is on. kShmLock and kShmMap are calls on the main
-// database file (the wal-index is reached through it).
-enum class VfsFile { kAny, kMainDb, kWal };
+// Which file a call is on: a fault names one, or kAny. kShmLock and kShmMap
+// are calls on the main database file (the wal-index is reached through
+// it); kOther is every other file (a rollback journal, a temporary file).
+enum class VfsFile { kAny, kMainDb, kWal, kOther };
 
 struct VfsFault {
   VfsCall call = VfsCall::kWrite;
