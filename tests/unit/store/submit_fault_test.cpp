@@ -338,6 +338,34 @@ TEST_F(SubmitFaultTest, AWriteFailingInsideItsSavepointFailsItsTransactionAndThe
   expect_serving_again_and_consistent(answered);
 }
 
+TEST_F(SubmitFaultTest, ADiskFillingUpMidBatchTellsTheSubmitsItTookThatTheDiskIsFull) {
+  // As above, but the write inside the savepoint finds the disk full: the
+  // Submits lost with its transaction are told so, not "unavailable".
+  std::vector<std::future<SubmitResult>> early;
+  std::future<void> ballast;
+  {
+    auto hold = hold_writer();
+    FaultyVfs::instance().arm({VfsCall::kWrite, VfsFile::kWal, SQLITE_FULL, 0, false});
+    early.push_back(submit(1));
+    early.push_back(submit(2));
+    ballast = writer_->submit([](store::Database& db) {
+      db.exec("INSERT INTO ballast VALUES (randomblob(200000))");
+    });
+    hold->release();
+  }
+  ASSERT_EQ(ballast.wait_for(kPatience), std::future_status::ready);
+  EXPECT_THROW(ballast.get(), store::StoreError);
+  for (auto& f : early) {
+    SubmitResult r = wait(std::move(f));
+    EXPECT_EQ(r.error, Error::kStoreFull) << r.text;
+    EXPECT_NE(r.text.find(path_), std::string::npos) << r.text;
+    EXPECT_NE(r.text.find("the disk holding the store is full"), std::string::npos) << r.text;
+  }
+  EXPECT_TRUE(stored_ids().empty());
+  EXPECT_TRUE(queued_ids().empty());
+  expect_serving_again_and_consistent({});
+}
+
 TEST_F(SubmitFaultTest, AnEventThatFailsToCommitIsLoggedAndTheDaemonKeepsServing) {
   SubmitResult first = wait(submit(1));
   ASSERT_TRUE(first.ok()) << first.text;
