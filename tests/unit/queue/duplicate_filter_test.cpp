@@ -75,6 +75,22 @@ TEST(DuplicateFilterTest, ManyDistinctMessagesStayWithinCapacity) {
   EXPECT_FALSE(filter.seen(1, "0", kT + 20));
 }
 
+TEST(DuplicateFilterTest, ForgettingForWantOfRoomInsideTheWindowIsCounted) {
+  DuplicateFilter filter(10, 2);
+  EXPECT_FALSE(filter.seen(1, "a", kT));
+  EXPECT_FALSE(filter.seen(1, "b", kT + 1));
+  EXPECT_FALSE(filter.seen(1, "c", kT + 2));  // "a" still inside its window
+  EXPECT_EQ(filter.forgotten_early(), 1u);
+  EXPECT_FALSE(filter.seen(1, "d", kT + 12.5));  // "b" and "c" expired first: room
+  EXPECT_FALSE(filter.seen(1, "e", kT + 12.6));
+  EXPECT_EQ(filter.forgotten_early(), 1u) << "an expired entry counted as forgotten early";
+}
+
+TEST(DuplicateFilterTest, DefaultCapacityHoldsFourMessagesASecondForTheDefaultTtl) {
+  DuplicateFilter filter(1800);
+  EXPECT_GE(filter.capacity(), 4u * 1800);
+}
+
 TEST(DuplicateFilterTest, WindowZeroTurnsItOff) {
   DuplicateFilter filter(0);
   for (int i = 0; i < 5; ++i) EXPECT_FALSE(filter.seen(4, "abc", kT));
