@@ -67,6 +67,7 @@ std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32
 }
 
 bool QueueManager::refuse_if_stale(TypeState& state, const ReceivedMessage& received, double now) {
+  ACOMMS_ASSERT_CORE_THREAD();
   if (!state.filter) return false;
   std::optional<double> stamped = state.roles.timestamp(*received.message);
   double bound = state.window_s + clock_skew_s_;
@@ -90,6 +91,7 @@ bool QueueManager::refuse_if_stale(TypeState& state, const ReceivedMessage& rece
 }
 
 bool QueueManager::drop_if_duplicate(TypeState& state, const ReceivedMessage& received, double now) {
+  ACOMMS_ASSERT_CORE_THREAD();
   if (!state.filter) return false;
   DuplicateFilter& filter = *state.filter;
   bool seen = filter.seen(received.src, received.encoded, now);

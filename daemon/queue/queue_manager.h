@@ -172,10 +172,12 @@ class QueueManager {
     QueueStats stats;  // core thread
     // Counted by journal_new, on any thread.
     mutable std::atomic<uint64_t> refused{0};
-    // The receive side (frame_receiving.cpp), core thread. window_s is W
-    // (0: off); the filter remembers for W, or W + 2 * clock skew when the
-    // type has a timestamp role.
+    // W (0: off), set when the queue is made; prepare_new reads it on any
+    // thread to bound a Submit's ttl.
     double window_s = 0;
+    // The receive side (frame_receiving.cpp), core thread: the filter
+    // remembers for W, or W + 2 * clock skew when the type has a timestamp
+    // role.
     std::optional<DuplicateFilter> filter;
     uint64_t stale_in_burst = 0;      // stale refusals since the last fresh message
     uint64_t forgotten_early_logged = 0;

@@ -197,6 +197,7 @@ TEST_F(KillStorm, EveryAcknowledgedCommandIsDeliveredExactlyOnceThroughRandomSig
   while (!all_arrived(delivered()) && std::chrono::steady_clock::now() - drain_began < 90s) {
     std::this_thread::sleep_for(200ms);
   }
+  const double drain_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - drain_began).count();
   // A little longer, for copies that would come twice.
   std::this_thread::sleep_for(std::chrono::milliseconds(static_cast<int>(4 * kSlotSeconds * 1000)));
 
@@ -212,7 +213,7 @@ TEST_F(KillStorm, EveryAcknowledgedCommandIsDeliveredExactlyOnceThroughRandomSig
   std::cout << "kill storm: " << kills << " SIGKILLs (vehicle " << killed[kVehicle] << ", topside "
             << killed[kTopside] << ") in " << storm_s << " s; " << attempted << " Commands submitted, "
             << acknowledged.size() << " acknowledged, " << copies.size() << " delivered; lost " << lost.size()
-            << ", delivered twice " << twice.size() << "\n";
+            << ", delivered twice " << twice.size() << "; backlog drained in " << drain_s << " s\n";
   RecordProperty("kills", kills);
   RecordProperty("acknowledged", static_cast<int>(acknowledged.size()));
   RecordProperty("lost", static_cast<int>(lost.size()));
