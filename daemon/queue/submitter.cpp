@@ -44,6 +44,8 @@ SubmitResult refusal_of(const std::exception_ptr& error) {
     return refused(Error::kUnknownType, e.what());
   } catch (const QueueFullError& e) {
     return refused(Error::kQueueFull, e.what());
+  } catch (const TtlTooLongError& e) {
+    return refused(Error::kInvalidMessage, e.what());
   } catch (const dccl::Error& e) {
     return refused(Error::kInvalidMessage, e.what());
   } catch (...) {
