@@ -1,5 +1,6 @@
 // The seed's quantities (spec §6) against shared/conformance/gram §4, read
 // at run time: tolerances 1e-4 on objectives, 1e-3 dB on H̄ and SE.
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <map>
@@ -15,6 +16,7 @@
 #include "gram/range_averaged_tl.h"
 #include "gram/range_window.h"
 #include "gram/sonar_equation.h"
+#include "gram/transmission_loss.h"
 
 namespace acomms::gram {
 namespace {
@@ -94,7 +96,6 @@ TEST(GramDepthObjective, PekerisWindowsMatchHbarObjectiveAndBothLowpasses) {
   EXPECT_LE(max_o, kObjectiveTolerance);
   EXPECT_LE(max_causal, kObjectiveTolerance);
   EXPECT_LE(max_zero, kObjectiveTolerance);
-  RecordProperty("max_error_h_bar_db", std::to_string(max_h));
   std::cout << "depth_objective_pekeris_500hz: max |dH| " << max_h << " dB, |dO| " << max_o
             << ", causal " << max_causal << ", zero-phase " << max_zero << "\n";
 }
@@ -146,14 +147,49 @@ TEST(GramDepthObjective, SignalExcessUsesTheBandNoiseLevel) {
     s.band = {t.at(i, "f_lo_khz"), t.at(i, "f_hi_khz"), t.at(i, "shipping"), t.at(i, "wind_mps")};
     const double nl = noise_level_db(s);
     const double se = signal_excess_db(s.source_level_db, t.at(i, "h_db"), nl, s.array_gain_db);
-    // The file prints NL and SE to 4 decimals: allow half a unit of that.
-    max_nl = std::max(max_nl, std::abs(nl - t.at(i, "nl_db")) - t.half_unit(i, "nl_db"));
-    max_se = std::max(max_se, std::abs(se - t.at(i, "se_db")) - t.half_unit(i, "se_db"));
+    // The file prints NL and SE to 4 decimals: allow half a unit of that too.
+    EXPECT_NEAR(nl, t.at(i, "nl_db"), kDbTolerance + t.half_unit(i, "nl_db")) << "row " << i;
+    EXPECT_NEAR(se, t.at(i, "se_db"), kDbTolerance + t.half_unit(i, "se_db")) << "row " << i;
+    max_nl = std::max(max_nl, std::abs(nl - t.at(i, "nl_db")));
+    max_se = std::max(max_se, std::abs(se - t.at(i, "se_db")));
   }
-  EXPECT_LE(max_nl, kDbTolerance);
-  EXPECT_LE(max_se, kDbTolerance);
   std::cout << "sonar_equation_eq4_7: max |dNL| " << max_nl << ", |dSE| " << max_se
-            << " dB beyond print rounding\n";
+            << " dB\n";
+}
+
+// The built-in model on pekeris_500hz.env against the exact field, through
+// the whole pipeline: window-averaged intensity hides the pointwise misses
+// of a beam model (README §2: 400-m averages within 0.11 dB median), so H̄
+// over the CSV's windows must sit close to the exact H̄.
+TEST(GramDepthObjective, TheBuiltInModelsHbarIsCloseToTheExactFieldsOverEachWindow) {
+  CsvTable t("depth_objective_pekeris_500hz.csv");
+  const std::vector<TransmissionLoss> model{
+      compute_transmission_loss(pekeris_env())};
+  const Environment env = pekeris_env();
+  std::vector<double> errors;
+  for (std::size_t row = 0; row < t.size();) {
+    DepthObjectiveRequest req;
+    req.range_m = t.at(row, "r0_m");
+    req.horizon_s = 1.0;
+    req.speed_mps = t.at(row, "delta_r_m");
+    req.h_max_db = t.at(row, "h_max_db");
+    req.limits = {0.0, 1000.0, 0.0};
+    const auto r = compute_depth_objective(model, env, req);
+    const double r0 = req.range_m;
+    for (; row < t.size() && t.at(row, "r0_m") == r0; ++row) {
+      std::size_t d = 0;
+      while (d < r.depth_m.size() && r.depth_m[d] != t.at(row, "depth_m")) ++d;
+      ASSERT_LT(d, r.depth_m.size());
+      errors.push_back(std::abs(r.h_bar_db[d] - t.at(row, "h_bar_db")));
+    }
+  }
+  std::sort(errors.begin(), errors.end());
+  const double median = errors[errors.size() / 2];
+  const double p90 = errors[errors.size() * 9 / 10];
+  std::cout << "built-in model vs exact H̄: median " << median << " dB, p90 " << p90
+            << " dB, max " << errors.back() << " dB\n";
+  EXPECT_LE(median, 0.2);  // the README's suggested band for 400-m averages
+  EXPECT_LE(p90, 0.6);
 }
 
 }  // namespace

@@ -259,6 +259,92 @@ TEST(GramDepthObjectiveRequest, InstancesOnDifferentGridsAreRefused) {
             "TL instance 1 has a different receiver grid from instance 0");
 }
 
+Environment flat_100m() {
+  Environment env;
+  env.add_sound_speed()->set_depth_m(0);
+  env.add_sound_speed()->set_depth_m(100);
+  return env;
+}
+
+// Uniform TL per depth: depth i has `tl[i]` dB at every range 100..400 m.
+TransmissionLoss layered(std::vector<double> depths, std::vector<double> tl) {
+  TransmissionLoss out;
+  out.range_m = {100, 200, 300, 400};
+  out.depth_m = std::move(depths);
+  for (double t : tl)
+    for (int j = 0; j < 4; ++j) out.tl_db.push_back(t);
+  return out;
+}
+
+DepthObjectiveRequest request_at(double r0) {
+  DepthObjectiveRequest r;
+  r.range_m = r0;
+  r.speed_mps = 1;
+  r.horizon_s = 150;
+  r.limits = {0, 100, 0};
+  return r;
+}
+
+TEST(GramDepthObjectivePipeline, TheWindowMaximumScoresTheWorstDepthZero) {
+  const std::vector<TransmissionLoss> tl{layered({10, 20, 30}, {40, 80, 60})};
+  DepthObjectiveRequest req = request_at(100);
+  req.h_max_db = std::nullopt;
+  const auto r = compute_depth_objective(tl, flat_100m(), req);
+  EXPECT_DOUBLE_EQ(r.h_max_db, 80);
+  EXPECT_DOUBLE_EQ(r.objective[0], 0.5);
+  EXPECT_DOUBLE_EQ(r.objective[1], 0.0);
+  EXPECT_DOUBLE_EQ(r.objective[2], 0.25);
+  EXPECT_EQ(r.best.depth_m, 10);
+}
+
+TEST(GramDepthObjectivePipeline, InstancesAreAveragedInIntensityBeforeTheObjective) {
+  const std::vector<TransmissionLoss> tl{layered({10, 20}, {60, 60}), layered({10, 20}, {60, 80})};
+  const auto r = compute_depth_objective(tl, flat_100m(), request_at(100));
+  EXPECT_NEAR(r.h_bar_db[0], 60, 1e-12);
+  EXPECT_NEAR(r.h_bar_db[1], -10 * std::log10((1e-6 + 1e-8) / 2), 1e-12);
+  EXPECT_NEAR(r.band_low_db[0], 60, 1e-12);
+  EXPECT_LT(r.band_low_db[1], r.h_bar_db[1]);
+  EXPECT_GT(r.band_high_db[1], r.h_bar_db[1]);
+}
+
+TEST(GramDepthObjectivePipeline, WithSonarOptionsTheSignalExcessObjectiveIsUsed) {
+  const std::vector<TransmissionLoss> tl{layered({10, 20, 30}, {60, 70, 90})};
+  DepthObjectiveRequest req = request_at(100);
+  req.sonar = SonarOptions{};
+  req.sonar->source_level_db = 170;
+  req.sonar->noise_level_db = 90;
+  req.sonar->array_gain_db = 0;
+  req.sonar->threshold_db = 10;
+  const auto r = compute_depth_objective(tl, flat_100m(), req);
+  ASSERT_EQ(r.signal_excess_db.size(), 3u);
+  EXPECT_NEAR(r.signal_excess_db[0], 20, 1e-9);  // 170 − 60 − 90 + 0
+  EXPECT_NEAR(r.signal_excess_db[2], -10, 1e-9);
+  EXPECT_NEAR(r.objective[0], 1.0, 1e-12);
+  EXPECT_NEAR(r.objective[1], 0.0, 1e-12);  // SE 10 = the threshold
+  EXPECT_EQ(r.objective[2], 0.0);
+  EXPECT_EQ(r.best.depth_m, 10);
+}
+
+TEST(GramDepthObjectivePipeline, TheLowpassStartsAtTheShallowestAllowedDepth) {
+  const std::vector<TransmissionLoss> tl{layered({10, 20, 30, 40}, {90, 30, 60, 60})};
+  DepthObjectiveRequest req = request_at(100);
+  req.limits = {15, 100, 0};
+  req.lowpass = LowpassOptions{};
+  const auto r = compute_depth_objective(tl, flat_100m(), req);
+  EXPECT_EQ(r.objective_filtered[0], r.objective[0]);  // above the limit: raw
+  EXPECT_EQ(r.objective_filtered[1], r.objective[1]);  // the filter's first sample
+  EXPECT_GT(r.objective_filtered[2], r.objective[2]);  // lags the fall below 20 m
+}
+
+TEST(GramDepthObjectivePipeline, TheLowpassRefusesUnevenDepthsNamingThem) {
+  const std::vector<TransmissionLoss> tl{layered({10, 20, 35}, {60, 60, 60})};
+  DepthObjectiveRequest req = request_at(100);
+  req.lowpass = LowpassOptions{};
+  EXPECT_EQ(error_of([&] { compute_depth_objective(tl, flat_100m(), req); }),
+            "the low-pass needs evenly spaced receiver depths: receiver_depth_m[2] − "
+            "receiver_depth_m[1] = 15 m, expected 10 m");
+}
+
 TEST(GramDepthObjectiveEndToEnd, ThePekerisModelRunGivesABestDepthInsideTheLimits) {
   const auto start = std::chrono::steady_clock::now();
   ImportedEnvironment imported = import_bellhop_env_file(
