@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "gram/loss_objective.h"
+#include "gram/noise_depth_profile.h"
 #include "gram/validation_text.h"
 
 namespace acomms::gram {
@@ -38,7 +39,8 @@ void combine_instances(std::span<const TransmissionLoss> instances, const RangeW
   }
 }
 
-void compute_objective(const DepthObjectiveRequest& request, DepthObjectiveResult& out) {
+void compute_objective(const DepthObjectiveRequest& request, const Environment& env,
+                       DepthObjectiveResult& out) {
   if (!request.sonar) {
     if (request.h_max_db) {
       out.h_max_db = *request.h_max_db;
@@ -56,10 +58,14 @@ void compute_objective(const DepthObjectiveRequest& request, DepthObjectiveResul
     return;
   }
   const SonarOptions& s = *request.sonar;
-  const double nl = noise_level_db(s);
-  for (double h : out.h_bar_db) {
+  const double nl0 = noise_level_db(s);
+  if (s.noise_decrease_db_per_km) out.critical_depth_m = critical_depth(env);
+  for (std::size_t i = 0; i < out.depth_m.size(); ++i) {
+    const double nl = noise_level_at_depth(nl0, out.depth_m[i], out.critical_depth_m,
+                                           s.noise_decrease_db_per_km.value_or(0.0));
     out.noise_level_db.push_back(nl);
-    out.signal_excess_db.push_back(signal_excess_db(s.source_level_db, h, nl, s.array_gain_db));
+    out.signal_excess_db.push_back(
+        signal_excess_db(s.source_level_db, out.h_bar_db[i], nl, s.array_gain_db));
   }
   out.objective = signal_excess_objective(out.signal_excess_db, s.threshold_db);
 }
@@ -121,7 +127,7 @@ DepthObjectiveResult compute_depth_objective(std::span<const TransmissionLoss> i
                              request.horizon_s, grid_range_step(instances[0])});
   combine_instances(instances, out.window, out);
   out.bottom_m = shallowest_bottom(env, out.window);
-  compute_objective(request, out);
+  compute_objective(request, env, out);
   filter_objective(request, out);
   out.best = best_depth(out.depth_m, out.objective_filtered, request.limits, out.bottom_m);
   return out;

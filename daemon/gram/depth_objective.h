@@ -10,7 +10,8 @@
 //      instances (eq. 4.4) with its sensitivity band;
 //   3. the objective: eq. 4.3 with a fixed H_max or the window maximum; or,
 //      when sonar options are given, the signal-excess objective of eq. 4.7
-//      (sonar_equation.h), which then replaces eq. 4.3;
+//      (sonar_equation.h), which then replaces eq. 4.3; NL may fall below
+//      the profile's critical depth (noise_depth_profile.h);
 //   4. optionally the low-pass over depth (§6.4, depth_lowpass.h), run from
 //      the shallowest ALLOWED depth down over the allowed depths (which must
 //      be evenly spaced); depths outside the limits keep their raw value;
@@ -55,6 +56,7 @@ struct DepthObjectiveResult {
   std::vector<double> band_low_db;   // sensitivity band of eq. 4.4
   std::vector<double> band_high_db;
   double h_max_db = 0;               // the H_max used (eq. 4.3 objective only)
+  std::optional<double> critical_depth_m;  // sonar with a noise decrease only
   std::vector<double> noise_level_db;    // per depth, sonar only
   std::vector<double> signal_excess_db;  // per depth, sonar only
   std::vector<double> objective;         // raw: eq. 4.3, or O_SE with sonar

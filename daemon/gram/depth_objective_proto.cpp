@@ -37,6 +37,7 @@ DepthObjectiveRequest request_from_proto(const DepthObjectiveQuery& q) {
     o.source_level_db = s.source_level_db();
     o.array_gain_db = s.array_gain_db();
     o.threshold_db = s.threshold_db();
+    if (s.has_noise_decrease_db_per_km()) o.noise_decrease_db_per_km = s.noise_decrease_db_per_km();
     switch (s.noise_case()) {
       case SonarEquationOptions::kNoiseLevelDb:
         o.noise_level_db = s.noise_level_db();
@@ -65,6 +66,7 @@ DepthObjectiveReply reply_to_proto(const DepthObjectiveResult& result) {
   a.set_best_depth_m(result.best.depth_m);
   a.set_best_objective(result.best.objective);
   a.set_any_signal(result.best.any_signal);
+  if (result.critical_depth_m) a.set_critical_depth_m(*result.critical_depth_m);
   for (std::size_t i = 0; i < result.depth_m.size(); ++i) {
     auto* p = a.add_points();
     p->set_depth_m(result.depth_m[i]);
@@ -74,6 +76,7 @@ DepthObjectiveReply reply_to_proto(const DepthObjectiveResult& result) {
     p->set_objective(result.objective[i]);
     p->set_objective_filtered(result.objective_filtered[i]);
     if (i < result.signal_excess_db.size()) p->set_signal_excess_db(result.signal_excess_db[i]);
+    if (i < result.noise_level_db.size()) p->set_noise_level_db(result.noise_level_db[i]);
   }
   return a;
 }

@@ -15,6 +15,9 @@ std::optional<std::string> validate_sonar(const SonarOptions& o) {
   if (auto e = require_finite("sonar.source_level_db", o.source_level_db)) return e;
   if (auto e = require_finite("sonar.array_gain_db", o.array_gain_db)) return e;
   if (auto e = require_finite("sonar.threshold_db", o.threshold_db)) return e;
+  if (o.noise_decrease_db_per_km)
+    if (auto e = require_at_least("sonar.noise_decrease_db_per_km", *o.noise_decrease_db_per_km, 0.0))
+      return e;
   if (o.noise_level_db) return require_finite("sonar.noise_level_db", *o.noise_level_db);
   const NoiseBand& b = o.band;
   if (auto e = require_greater("sonar.band.f_lo_khz", b.f_lo_khz, 0.0)) return e;

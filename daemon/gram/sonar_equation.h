@@ -33,6 +33,10 @@ struct SonarOptions {
   std::optional<double> noise_level_db;  // NL, dB re 1 µPa; if unset, from `band`
   NoiseBand band;
   double threshold_db = 0;               // SE₀, the decoding threshold
+  // Deep water: NL falls by this many dB/km below the critical depth of the
+  // environment's profile (noise_depth_profile.h; spec default 3). Unset:
+  // NL is the same at every depth.
+  std::optional<double> noise_decrease_db_per_km;
 };
 
 std::optional<std::string> validate_sonar(const SonarOptions& options);

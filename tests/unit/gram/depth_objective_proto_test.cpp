@@ -76,6 +76,20 @@ TEST(GramDepthObjectiveProto, MissingLimitsAndSonarNoiseAreNamed) {
   EXPECT_EQ(error_of(q), "sonar.band.shipping = 2 must be at most 1");
 }
 
+TEST(GramDepthObjectiveProto, SonarOptionsCarryTheNoiseChoiceAndItsDepthDecrease) {
+  DepthObjectiveQuery q = good_query();
+  q.mutable_sonar()->set_source_level_db(185);
+  q.mutable_sonar()->set_noise_level_db(80);
+  DepthObjectiveRequest r = request_from_proto(q);
+  ASSERT_TRUE(r.sonar);
+  EXPECT_EQ(r.sonar->noise_level_db, 80.0);
+  EXPECT_EQ(r.sonar->noise_decrease_db_per_km, std::nullopt);
+  q.mutable_sonar()->set_noise_decrease_db_per_km(3);
+  EXPECT_EQ(request_from_proto(q).sonar->noise_decrease_db_per_km, 3.0);
+  q.mutable_sonar()->set_noise_decrease_db_per_km(-1);
+  EXPECT_EQ(error_of(q), "sonar.noise_decrease_db_per_km = -1 must be a finite number of at least 0");
+}
+
 TEST(GramDepthObjectiveProto, TheReplyListsEveryDepth) {
   DepthObjectiveResult r;
   r.window = {180, 2000, 2180, false, false};

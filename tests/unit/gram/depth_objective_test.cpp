@@ -14,6 +14,7 @@
 #include "gram/depth_lowpass.h"
 #include "gram/depth_objective.h"
 #include "gram/loss_objective.h"
+#include "gram/noise_depth_profile.h"
 #include "gram/range_averaged_tl.h"
 #include "gram/range_window.h"
 #include "gram/sonar_equation.h"
@@ -343,6 +344,51 @@ TEST(GramDepthObjectivePipeline, TheLowpassRefusesUnevenDepthsNamingThem) {
   EXPECT_EQ(error_of([&] { compute_depth_objective(tl, flat_100m(), req); }),
             "the low-pass needs evenly spaced receiver depths: receiver_depth_m[2] − "
             "receiver_depth_m[1] = 15 m, expected 10 m");
+}
+
+Environment munk_like() {
+  Environment env;
+  for (auto [z, c] : {std::pair{0.0, 1548.0}, {1300.0, 1500.0}, {5000.0, 1551.0}}) {
+    auto* p = env.add_sound_speed();
+    p->set_depth_m(z);
+    p->set_speed_mps(c);
+  }
+  return env;
+}
+
+TEST(GramNoiseDepthProfile, TheCriticalDepthIsWhereTheSpeedAboveTheAxisIsRegained) {
+  const auto dc = critical_depth(munk_like());
+  ASSERT_TRUE(dc);
+  EXPECT_NEAR(*dc, 1300 + 3700 * 48.0 / 51.0, 1e-9);
+  EXPECT_DOUBLE_EQ(noise_level_at_depth(60, 1000, dc, 3), 60);
+  EXPECT_NEAR(noise_level_at_depth(60, *dc + 1000, dc, 3), 57, 1e-12);
+}
+
+TEST(GramNoiseDepthProfile, ShallowOrIsovelocityWaterHasNoCriticalDepth) {
+  Environment env = munk_like();
+  env.mutable_sound_speed(2)->set_speed_mps(1540);  // never regains 1548
+  EXPECT_EQ(critical_depth(env), std::nullopt);
+  EXPECT_EQ(critical_depth(flat_100m()), std::nullopt);  // speeds all 0: no channel
+  Environment iso = munk_like();
+  for (auto& p : *iso.mutable_sound_speed()) p.set_speed_mps(1500);
+  EXPECT_EQ(critical_depth(iso), std::nullopt);
+  EXPECT_DOUBLE_EQ(noise_level_at_depth(60, 4000, std::nullopt, 3), 60);
+}
+
+TEST(GramDepthObjectivePipeline, BelowTheCriticalDepthTheNoiseFallsAndTheSignalExcessRises) {
+  const std::vector<TransmissionLoss> tl{layered({1000, 4882.35294117647, 5000}, {80, 80, 80})};
+  DepthObjectiveRequest req = request_at(100);
+  req.limits = {0, 6000, 0};
+  req.sonar = SonarOptions{};
+  req.sonar->source_level_db = 180;
+  req.sonar->noise_level_db = 70;
+  req.sonar->noise_decrease_db_per_km = 3;
+  const auto r = compute_depth_objective(tl, munk_like(), req);
+  ASSERT_TRUE(r.critical_depth_m);
+  EXPECT_DOUBLE_EQ(r.noise_level_db[0], 70);
+  EXPECT_NEAR(r.noise_level_db[1], 70 - 0.3, 1e-9);  // 100 m below d_c
+  EXPECT_NEAR(r.signal_excess_db[1], 30.3, 1e-9);
+  EXPECT_EQ(r.best.depth_m, 5000);
 }
 
 TEST(GramDepthObjectiveEndToEnd, ThePekerisModelRunGivesABestDepthInsideTheLimits) {
