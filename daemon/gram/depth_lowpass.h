@@ -12,7 +12,12 @@
 // lags ≈ 1/(2π f_c) downward: the best depth moves below the caustic.
 // `zero_phase` runs the same filter forward then backward (the backward pass
 // starts from the forward output at the deepest point): no lag, for shallow
-// water. Thread-safe: pure function.
+// water.
+// On a depth grid that is uneven, or coarser than kMaxLowpassStep_m (where
+// a → 1 and the filter would do nothing), the objective is resampled
+// linearly onto a uniform grid from the first depth (step ≤ 10 m, as the
+// spec recommends), filtered, and read back linearly at the given depths.
+// Thread-safe: pure functions.
 #pragma once
 
 #include <optional>
@@ -33,5 +38,13 @@ std::optional<std::string> validate_lowpass(const LowpassOptions& options);
 // Throws std::invalid_argument on a bad option or step.
 std::vector<double> lowpass_over_depth(std::span<const double> values, double step_m,
                                        const LowpassOptions& options);
+
+inline constexpr double kMaxLowpassStep_m = 10.0;
+
+// The filter on ascending depths (strictly increasing; throws
+// std::invalid_argument naming the first that is not).
+std::vector<double> lowpass_on_depths(std::span<const double> depth_m,
+                                      std::span<const double> values,
+                                      const LowpassOptions& options);
 
 }  // namespace acomms::gram

@@ -1,6 +1,7 @@
 // The depth objective pipeline: shared/spec/gram.md §6.
 #include "gram/depth_objective.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -10,8 +11,6 @@
 
 namespace acomms::gram {
 namespace {
-
-constexpr double kUniformTolerance = 1e-6;  // relative, on the depth spacing
 
 void require_same_grid(std::span<const TransmissionLoss> instances) {
   if (instances.empty())
@@ -80,21 +79,15 @@ void filter_objective(const DepthObjectiveRequest& request, DepthObjectiveResult
   for (std::size_t i = 0; i < out.depth_m.size(); ++i)
     if (out.depth_m[i] >= request.limits.min_depth_m && out.depth_m[i] <= deepest)
       allowed.push_back(i);
-  if (allowed.size() < 2) return;  // one depth: nothing to smooth
-  const double step = out.depth_m[allowed[1]] - out.depth_m[allowed[0]];
-  std::vector<double> values;
-  for (std::size_t k = 0; k < allowed.size(); ++k) {
-    if (k > 0) {
-      const double d = out.depth_m[allowed[k]] - out.depth_m[allowed[k - 1]];
-      if (!(std::abs(d - step) <= kUniformTolerance * step))
-        throw std::invalid_argument(
-            "the low-pass needs evenly spaced receiver depths: receiver_depth_m[" +
-            std::to_string(allowed[k]) + "] − receiver_depth_m[" + std::to_string(allowed[k - 1]) +
-            "] = " + format_number(d) + " m, expected " + format_number(step) + " m");
-    }
-    values.push_back(out.objective[allowed[k]]);
+  // The filter runs downward whatever order the receiver depths were given in.
+  std::stable_sort(allowed.begin(), allowed.end(),
+                   [&](std::size_t a, std::size_t b) { return out.depth_m[a] < out.depth_m[b]; });
+  std::vector<double> depths, values;
+  for (std::size_t i : allowed) {
+    depths.push_back(out.depth_m[i]);
+    values.push_back(out.objective[i]);
   }
-  const std::vector<double> y = lowpass_over_depth(values, step, *request.lowpass);
+  const std::vector<double> y = lowpass_on_depths(depths, values, *request.lowpass);
   for (std::size_t k = 0; k < allowed.size(); ++k) out.objective_filtered[allowed[k]] = y[k];
 }
 

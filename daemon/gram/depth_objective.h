@@ -10,11 +10,13 @@
 //      instances (eq. 4.4) with its sensitivity band;
 //   3. the objective: eq. 4.3 with a fixed H_max or the window maximum; or,
 //      when sonar options are given, the signal-excess objective of eq. 4.7
-//      (sonar_equation.h), which then replaces eq. 4.3; NL may fall below
+//      (sonar_equation.h), which then replaces eq. 4.3 (a window maximum
+//      ≤ 0 dB, a gain everywhere, scores every depth 1); NL may fall below
 //      the profile's critical depth (noise_depth_profile.h);
 //   4. optionally the low-pass over depth (§6.4, depth_lowpass.h), run from
-//      the shallowest ALLOWED depth down over the allowed depths (which must
-//      be evenly spaced); depths outside the limits keep their raw value;
+//      the shallowest ALLOWED depth down over the allowed depths (resampled
+//      to ≤ 10 m if uneven or coarse); depths outside the limits keep their
+//      raw value;
 //   5. the best allowed depth (best_depth.h; ties to the shallowest).
 // Every instance must share the receiver grid. All request fields are
 // validated first; an error names the field and the bound.

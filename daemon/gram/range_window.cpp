@@ -1,6 +1,7 @@
 // Range window: shared/spec/gram.md §6.1.
 #include "gram/range_window.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>

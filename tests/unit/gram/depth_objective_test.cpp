@@ -337,13 +337,29 @@ TEST(GramDepthObjectivePipeline, TheLowpassStartsAtTheShallowestAllowedDepth) {
   EXPECT_GT(r.objective_filtered[2], r.objective[2]);  // lags the fall below 20 m
 }
 
-TEST(GramDepthObjectivePipeline, TheLowpassRefusesUnevenDepthsNamingThem) {
-  const std::vector<TransmissionLoss> tl{layered({10, 20, 35}, {60, 60, 60})};
+TEST(GramDepthObjectivePipeline, UnevenDepthsAreResampledToTenMetresBeforeTheLowpass) {
+  // O = {0, 1, 1} at {0, 10, 30} m: on the 10-m grid {0, 1, 1, 1}.
+  const std::vector<TransmissionLoss> tl{layered({0, 10, 30}, {100, 0, 0})};
   DepthObjectiveRequest req = request_at(100);
+  req.h_max_db = 100;
   req.lowpass = LowpassOptions{};
-  EXPECT_EQ(error_of([&] { compute_depth_objective(tl, flat_100m(), req); }),
-            "the low-pass needs evenly spaced receiver depths: receiver_depth_m[2] − "
-            "receiver_depth_m[1] = 15 m, expected 10 m");
+  const auto r = compute_depth_objective(tl, flat_100m(), req);
+  const double a = 1 - std::exp(-2 * M_PI * 10 / 50.0);
+  EXPECT_DOUBLE_EQ(r.objective_filtered[0], 0);
+  EXPECT_NEAR(r.objective_filtered[1], a, 1e-12);
+  EXPECT_NEAR(r.objective_filtered[2], 1 - std::pow(1 - a, 3), 1e-12);
+}
+
+TEST(GramDepthLowpass, ACoarseGridIsFilteredOnTenMetreStepsNotPassedThrough) {
+  // At 50-m steps a = 1 − e^(−2π) ≈ 0.998: filtering directly would do nothing.
+  const std::vector<double> depths{0, 50, 100}, o{0, 1, 1};
+  const auto y = lowpass_on_depths(depths, o, {});
+  EXPECT_LT(y[1], 0.95);
+  EXPECT_GT(y[1], 0.5);
+  EXPECT_GT(y[2], y[1]);
+  const std::vector<double> repeated{0, 50, 50};
+  EXPECT_EQ(error_of([&] { lowpass_on_depths(repeated, o, {}); }),
+            "the low-pass needs increasing depths: depth 50 m follows 50 m");
 }
 
 Environment munk_like() {
