@@ -64,11 +64,11 @@ BestDepth best_depth(std::span<const double> depth_m, std::span<const double> ob
                                        : format_number(depth_m.front()) + " to " +
                                              format_number(depth_m.back()) + " m";
     throw std::invalid_argument(
-        "no receiver depth lies within the vehicle's limits [" +
-        format_number(limits.min_depth_m) + ", " + format_number(best.deepest_allowed_m) +
-        "] m (max_depth_m " + format_number(limits.max_depth_m) + ", bottom " +
-        format_number(bottom_m) + " m − min_altitude_m " + format_number(limits.min_altitude_m) +
-        "; grid depths " + grid + ")");
+        "no receiver depth lies within the vehicle's limits [" + format_number(limits.min_depth_m) +
+        ", " + format_number(best.deepest_allowed_m) + "] m (max_depth_m " +
+        format_number(limits.max_depth_m) + ", bottom " + format_number(bottom_m) +
+        " m − min_altitude_m " + format_number(limits.min_altitude_m) + "; grid depths " + grid +
+        ")");
   }
   best.any_signal = best.objective > 0;
   return best;

@@ -26,16 +26,16 @@
 namespace acomms::gram {
 
 struct VehicleLimits {
-  double min_depth_m = 0;      // ≥ 0
-  double max_depth_m = 0;      // ≥ min_depth_m
-  double min_altitude_m = 0;   // ≥ 0, clearance above the bottom
+  double min_depth_m = 0;     // ≥ 0
+  double max_depth_m = 0;     // ≥ min_depth_m
+  double min_altitude_m = 0;  // ≥ 0, clearance above the bottom
 };
 
 struct BestDepth {
   std::size_t index = 0;  // into the depth grid
   double depth_m = 0;
   double objective = 0;
-  bool any_signal = false;  // objective > 0 somewhere allowed
+  bool any_signal = false;       // objective > 0 somewhere allowed
   double deepest_allowed_m = 0;  // min(max_depth_m, bottom_m − min_altitude_m)
 };
 

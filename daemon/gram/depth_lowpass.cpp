@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "gram/validation_text.h"
 

@@ -73,8 +73,8 @@ void compute_objective(const DepthObjectiveRequest& request, const Environment& 
 void filter_objective(const DepthObjectiveRequest& request, DepthObjectiveResult& out) {
   out.objective_filtered = out.objective;
   if (!request.lowpass) return;
-  const double deepest = std::min(request.limits.max_depth_m,
-                                  out.bottom_m - request.limits.min_altitude_m);
+  const double deepest =
+      std::min(request.limits.max_depth_m, out.bottom_m - request.limits.min_altitude_m);
   std::vector<std::size_t> allowed;
   for (std::size_t i = 0; i < out.depth_m.size(); ++i)
     if (out.depth_m[i] >= request.limits.min_depth_m && out.depth_m[i] <= deepest)

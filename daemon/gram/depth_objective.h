@@ -39,10 +39,10 @@
 namespace acomms::gram {
 
 struct DepthObjectiveRequest {
-  double range_m = 0;       // r₀
-  double speed_mps = 0;     // |v₀|
-  double heading_deg = 0;   // Θ, 0 = straight away from the other node
-  double horizon_s = 120;   // τ_a
+  double range_m = 0;      // r₀
+  double speed_mps = 0;    // |v₀|
+  double heading_deg = 0;  // Θ, 0 = straight away from the other node
+  double horizon_s = 120;  // τ_a
   // H_max of eq. 4.3 (> 0), or unset for the window maximum of H̄.
   std::optional<double> h_max_db = 108.0;
   VehicleLimits limits;
@@ -54,16 +54,16 @@ struct DepthObjectiveResult {
   RangeWindow window;
   std::size_t ranges_in_window = 0;
   std::vector<double> depth_m;
-  std::vector<double> h_bar_db;      // eq. 4.4 over the instances (eq. 4.2 if one)
-  std::vector<double> band_low_db;   // sensitivity band of eq. 4.4
+  std::vector<double> h_bar_db;     // eq. 4.4 over the instances (eq. 4.2 if one)
+  std::vector<double> band_low_db;  // sensitivity band of eq. 4.4
   std::vector<double> band_high_db;
-  double h_max_db = 0;               // the H_max used (eq. 4.3 objective only)
+  double h_max_db = 0;                     // the H_max used (eq. 4.3 objective only)
   std::optional<double> critical_depth_m;  // sonar with a noise decrease only
-  std::vector<double> noise_level_db;    // per depth, sonar only
-  std::vector<double> signal_excess_db;  // per depth, sonar only
-  std::vector<double> objective;         // raw: eq. 4.3, or O_SE with sonar
+  std::vector<double> noise_level_db;      // per depth, sonar only
+  std::vector<double> signal_excess_db;    // per depth, sonar only
+  std::vector<double> objective;           // raw: eq. 4.3, or O_SE with sonar
   std::vector<double> objective_filtered;  // after §6.4 (equals `objective` without lowpass)
-  double bottom_m = 0;               // shallowest bottom under the window
+  double bottom_m = 0;                     // shallowest bottom under the window
   BestDepth best;
 };
 

@@ -30,7 +30,8 @@ DepthObjectiveRequest request_from_proto(const DepthObjectiveQuery& q) {
   if (!q.has_limits())
     throw std::invalid_argument("limits is not set: give min_depth_m, max_depth_m, min_altitude_m");
   r.limits = {q.limits().min_depth_m(), q.limits().max_depth_m(), q.limits().min_altitude_m()};
-  if (q.has_lowpass()) r.lowpass = LowpassOptions{q.lowpass().cutoff_per_m(), q.lowpass().zero_phase()};
+  if (q.has_lowpass())
+    r.lowpass = LowpassOptions{q.lowpass().cutoff_per_m(), q.lowpass().zero_phase()};
   if (q.has_sonar()) {
     const SonarEquationOptions& s = q.sonar();
     SonarOptions o;

@@ -38,9 +38,10 @@ double grid_range_step(const TransmissionLoss& tl) {
   for (std::size_t j = 1; j < tl.range_m.size(); ++j) {
     const double d = tl.range_m[j] - tl.range_m[j - 1];
     if (!(d > 0))
-      throw std::invalid_argument("receiver range_m[" + std::to_string(j) + "] = " +
-                                  format_number(tl.range_m[j]) + " must be greater than range_m[" +
-                                  std::to_string(j - 1) + "] = " + format_number(tl.range_m[j - 1]));
+      throw std::invalid_argument("receiver range_m[" + std::to_string(j) +
+                                  "] = " + format_number(tl.range_m[j]) +
+                                  " must be greater than range_m[" + std::to_string(j - 1) +
+                                  "] = " + format_number(tl.range_m[j - 1]));
     step = std::min(step, d);
   }
   return step;

@@ -11,7 +11,8 @@
 //     converted from km and may be off by a rounding error).
 //   - Shadow receivers (TL = +inf) contribute intensity 0; receivers at
 //     range 0 (NaN, no value) are left out of the mean.
-//   - A depth whose intensities are all zero gets H̄ = +inf.
+//   - A depth whose intensities are all zero, or a window holding only the
+//     range-0 column, gets H̄ = +inf (no depth can be scored there).
 // Thread-safe: pure functions.
 #pragma once
 

@@ -13,8 +13,8 @@ namespace {
 
 std::optional<std::string> check_motion(double speed_mps, double heading_deg, double horizon_s) {
   if (auto e = require_at_least("speed_mps", speed_mps, 0.0)) return e;
-  if (!std::isfinite(heading_deg)) return "heading_deg = " + format_number(heading_deg) +
-                                          " must be a finite number of degrees";
+  if (!std::isfinite(heading_deg))
+    return "heading_deg = " + format_number(heading_deg) + " must be a finite number of degrees";
   return require_greater("horizon_s", horizon_s, 0.0);
 }
 

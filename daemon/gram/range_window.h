@@ -23,11 +23,11 @@
 namespace acomms::gram {
 
 struct RangeWindowInput {
-  double range_m = 0;        // r₀, the current range to the other node, ≥ 0
-  double speed_mps = 0;      // |v₀|, ≥ 0
-  double heading_deg = 0;    // Θ, relative to the line away from the other node
-  double horizon_s = 120;    // τ_a, > 0 (GLINT10: 120 s)
-  double range_step_m = 0;   // the receiver grid's range spacing, > 0
+  double range_m = 0;       // r₀, the current range to the other node, ≥ 0
+  double speed_mps = 0;     // |v₀|, ≥ 0
+  double heading_deg = 0;   // Θ, relative to the line away from the other node
+  double horizon_s = 120;   // τ_a, > 0 (GLINT10: 120 s)
+  double range_step_m = 0;  // the receiver grid's range spacing, > 0
 };
 
 struct RangeWindow {

@@ -16,7 +16,8 @@ std::optional<std::string> validate_sonar(const SonarOptions& o) {
   if (auto e = require_finite("sonar.array_gain_db", o.array_gain_db)) return e;
   if (auto e = require_finite("sonar.threshold_db", o.threshold_db)) return e;
   if (o.noise_decrease_db_per_km)
-    if (auto e = require_at_least("sonar.noise_decrease_db_per_km", *o.noise_decrease_db_per_km, 0.0))
+    if (auto e =
+            require_at_least("sonar.noise_decrease_db_per_km", *o.noise_decrease_db_per_km, 0.0))
       return e;
   if (o.noise_level_db) return require_finite("sonar.noise_level_db", *o.noise_level_db);
   const NoiseBand& b = o.band;
@@ -24,8 +25,8 @@ std::optional<std::string> validate_sonar(const SonarOptions& o) {
   if (auto e = require_greater("sonar.band.f_hi_khz", b.f_hi_khz, b.f_lo_khz))
     return *e + " (sonar.band.f_lo_khz)";
   if (auto e = require_at_least("sonar.band.shipping", b.shipping, 0.0)) return e;
-  if (b.shipping > 1) return "sonar.band.shipping = " + format_number(b.shipping) +
-                             " must be at most 1";
+  if (b.shipping > 1)
+    return "sonar.band.shipping = " + format_number(b.shipping) + " must be at most 1";
   return require_at_least("sonar.band.wind_mps", b.wind_mps, 0.0);
 }
 

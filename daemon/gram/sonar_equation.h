@@ -21,10 +21,10 @@ namespace acomms::gram {
 
 // The receiver band and conditions for the noise model.
 struct NoiseBand {
-  double f_lo_khz = 0;   // > 0
-  double f_hi_khz = 0;   // > f_lo_khz
-  double shipping = 0.5; // [0, 1]
-  double wind_mps = 0;   // ≥ 0
+  double f_lo_khz = 0;    // > 0
+  double f_hi_khz = 0;    // > f_lo_khz
+  double shipping = 0.5;  // [0, 1]
+  double wind_mps = 0;    // ≥ 0
 };
 
 struct SonarOptions {
@@ -32,7 +32,7 @@ struct SonarOptions {
   double array_gain_db = 0;              // AG, 0 for one hydrophone
   std::optional<double> noise_level_db;  // NL, dB re 1 µPa; if unset, from `band`
   NoiseBand band;
-  double threshold_db = 0;               // SE₀, the decoding threshold
+  double threshold_db = 0;  // SE₀, the decoding threshold
   // Deep water: NL falls by this many dB/km below the critical depth of the
   // environment's profile (noise_depth_profile.h; spec default 3). Unset:
   // NL is the same at every depth.

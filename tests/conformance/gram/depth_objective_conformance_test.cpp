@@ -1,13 +1,13 @@
 // The seed's quantities (spec §6) against shared/conformance/gram §4, read
 // at run time: tolerances 1e-4 on objectives, 1e-3 dB on H̄ and SE.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <map>
 #include <sstream>
 #include <utility>
-
-#include <gtest/gtest.h>
 
 #include "csv_table.h"
 #include "gram/bellhop_import.h"
@@ -29,9 +29,9 @@ TEST(GramDepthObjective, RangeWindowLengthIsSpeedTimesCosHeadingTimesHorizon) {
   CsvTable t("range_window_eq4_1.csv");
   ASSERT_GE(t.size(), 4u);
   for (std::size_t i = 0; i < t.size(); ++i)
-    EXPECT_NEAR(range_window_length(t.at(i, "speed_mps"), t.at(i, "theta_deg"),
-                                    t.at(i, "tau_a_s")),
-                t.at(i, "delta_r_m"), 1e-6) << "row " << i;
+    EXPECT_NEAR(range_window_length(t.at(i, "speed_mps"), t.at(i, "theta_deg"), t.at(i, "tau_a_s")),
+                t.at(i, "delta_r_m"), 1e-6)
+        << "row " << i;
 }
 
 // The exact Pekeris 500 Hz field of pekeris_500hz.csv as a model output.
@@ -81,13 +81,13 @@ TEST(GramDepthObjective, PekerisWindowsMatchHbarObjectiveAndBothLowpasses) {
       std::size_t d = 0;
       while (d < causal.depth_m.size() && causal.depth_m[d] != depth) ++d;
       ASSERT_LT(d, causal.depth_m.size()) << "depth " << depth;
-      const auto err = [&](double got, const char* col) {
-        return std::abs(got - t.at(row, col));
-      };
+      const auto err = [&](double got, const char* col) { return std::abs(got - t.at(row, col)); };
       max_h = std::max(max_h, err(causal.h_bar_db[d], "h_bar_db"));
       max_o = std::max(max_o, err(causal.objective[d], "objective"));
-      max_causal = std::max(max_causal, err(causal.objective_filtered[d], "objective_lowpass_causal"));
-      max_zero = std::max(max_zero, err(zero.objective_filtered[d], "objective_lowpass_zero_phase"));
+      max_causal =
+          std::max(max_causal, err(causal.objective_filtered[d], "objective_lowpass_causal"));
+      max_zero =
+          std::max(max_zero, err(zero.objective_filtered[d], "objective_lowpass_zero_phase"));
       ++checked;
     }
   }
@@ -153,8 +153,7 @@ TEST(GramDepthObjective, SignalExcessUsesTheBandNoiseLevel) {
     max_nl = std::max(max_nl, std::abs(nl - t.at(i, "nl_db")));
     max_se = std::max(max_se, std::abs(se - t.at(i, "se_db")));
   }
-  std::cout << "sonar_equation_eq4_7: max |dNL| " << max_nl << ", |dSE| " << max_se
-            << " dB\n";
+  std::cout << "sonar_equation_eq4_7: max |dNL| " << max_nl << ", |dSE| " << max_se << " dB\n";
 }
 
 // The built-in model on pekeris_500hz.env against the exact field, through
@@ -163,8 +162,7 @@ TEST(GramDepthObjective, SignalExcessUsesTheBandNoiseLevel) {
 // over the CSV's windows must sit close to the exact H̄.
 TEST(GramDepthObjective, TheBuiltInModelsHbarIsCloseToTheExactFieldsOverEachWindow) {
   CsvTable t("depth_objective_pekeris_500hz.csv");
-  const std::vector<TransmissionLoss> model{
-      compute_transmission_loss(pekeris_env())};
+  const std::vector<TransmissionLoss> model{compute_transmission_loss(pekeris_env())};
   const Environment env = pekeris_env();
   std::vector<double> errors;
   for (std::size_t row = 0; row < t.size();) {
@@ -186,8 +184,8 @@ TEST(GramDepthObjective, TheBuiltInModelsHbarIsCloseToTheExactFieldsOverEachWind
   std::sort(errors.begin(), errors.end());
   const double median = errors[errors.size() / 2];
   const double p90 = errors[errors.size() * 9 / 10];
-  std::cout << "built-in model vs exact H̄: median " << median << " dB, p90 " << p90
-            << " dB, max " << errors.back() << " dB\n";
+  std::cout << "built-in model vs exact H̄: median " << median << " dB, p90 " << p90 << " dB, max "
+            << errors.back() << " dB\n";
   EXPECT_LE(median, 0.2);  // the README's suggested band for 400-m averages
   EXPECT_LE(p90, 0.6);
 }

@@ -1,11 +1,11 @@
 // The depth-objective query on the wire: what proto3 cannot say (unset
 // scalars, an unset choice) is refused with the field's name.
-#include <stdexcept>
-#include <string>
+#include "gram/depth_objective_proto.h"
 
 #include <gtest/gtest.h>
 
-#include "gram/depth_objective_proto.h"
+#include <stdexcept>
+#include <string>
 
 namespace acomms::gram {
 namespace {
@@ -87,7 +87,8 @@ TEST(GramDepthObjectiveProto, SonarOptionsCarryTheNoiseChoiceAndItsDepthDecrease
   q.mutable_sonar()->set_noise_decrease_db_per_km(3);
   EXPECT_EQ(request_from_proto(q).sonar->noise_decrease_db_per_km, 3.0);
   q.mutable_sonar()->set_noise_decrease_db_per_km(-1);
-  EXPECT_EQ(error_of(q), "sonar.noise_decrease_db_per_km = -1 must be a finite number of at least 0");
+  EXPECT_EQ(error_of(q),
+            "sonar.noise_decrease_db_per_km = -1 must be a finite number of at least 0");
 }
 
 TEST(GramDepthObjectiveProto, TheReplyListsEveryDepth) {

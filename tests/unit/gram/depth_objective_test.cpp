@@ -1,18 +1,19 @@
 // The depth objective (spec §6): window conventions, validation messages,
 // best-depth selection under the vehicle's limits, and an end-to-end run of
 // the built-in model.
+#include "gram/depth_objective.h"
+
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "gram/bellhop_import.h"
 #include "gram/best_depth.h"
 #include "gram/depth_lowpass.h"
-#include "gram/depth_objective.h"
 #include "gram/loss_objective.h"
 #include "gram/noise_depth_profile.h"
 #include "gram/range_averaged_tl.h"
@@ -81,7 +82,9 @@ TEST(GramRangeWindow, BadInputsNameTheFieldAndTheBound) {
             "speed_mps = -1 must be a finite number of at least 0");
   EXPECT_EQ(error_of([] { range_window(window_input(2000, NAN, 0)); }),
             "speed_mps = nan must be a finite number of at least 0");
-  EXPECT_EQ(error_of([] { range_window({2000, 1, 0, 0, 25}); }),
+  EXPECT_EQ(error_of([] {
+              range_window({2000, 1, 0, 0, 25});
+            }),
             "horizon_s = 0 must be a finite number greater than 0");
   EXPECT_EQ(error_of([] { range_window(window_input(2000, 1, kInf)); }),
             "heading_deg = inf must be a finite number of degrees");
@@ -96,8 +99,8 @@ TransmissionLoss small_grid() {
   TransmissionLoss tl;
   tl.range_m = {0, 100, 200, 300};
   tl.depth_m = {10, 20, 30};
-  tl.tl_db = {NAN, 60, 60, 90,  //
-              NAN, 60, 70, 90,  //
+  tl.tl_db = {NAN, 60,   60,   90,  //
+              NAN, 60,   70,   90,  //
               NAN, kInf, kInf, 90};
   return tl;
 }
@@ -116,11 +119,15 @@ TEST(GramRangeAveragedTl, TheRangeZeroColumnIsLeftOutOfTheMean) {
 }
 
 TEST(GramRangeAveragedTl, AWindowBeyondTheGridIsAnErrorNamingBoth) {
-  EXPECT_EQ(error_of([] { range_averaged_tl(small_grid(), {0, 400, 500}); }),
+  EXPECT_EQ(error_of([] {
+              range_averaged_tl(small_grid(), {0, 400, 500});
+            }),
             "the range window [400, 500) m holds no receiver range (grid ranges: 0 to 300 m)");
   TransmissionLoss irregular = small_grid();
   irregular.irregular = true;
-  EXPECT_NE(error_of([&] { range_averaged_tl(irregular, {0, 0, 500}); }).find("irregular"),
+  EXPECT_NE(error_of([&] {
+              range_averaged_tl(irregular, {0, 0, 500});
+            }).find("irregular"),
             std::string::npos);
 }
 
@@ -159,7 +166,9 @@ TEST(GramDepthLowpass, StaysWithinTheInputRangeAndLagsDownward) {
   for (double v : y) EXPECT_TRUE(v >= 0 && v <= 1);
   const auto z = lowpass_over_depth(step, 10, {1.0 / 50, true});
   EXPECT_GT(z[24], 0.0);  // zero-phase: the step is felt above it too
-  EXPECT_EQ(error_of([&] { lowpass_over_depth(step, 10, {0, false}); }),
+  EXPECT_EQ(error_of([&] {
+              lowpass_over_depth(step, 10, {0, false});
+            }),
             "lowpass.cutoff_per_m = 0 must be a finite number greater than 0");
 }
 
@@ -172,8 +181,9 @@ TEST(GramSonarEquation, NoDepthAboveTheThresholdGivesAZeroObjective) {
   EXPECT_DOUBLE_EQ(o[2], 1.0);
   SonarOptions bad;
   bad.band = {10, 5, 0.5, 3};
-  EXPECT_EQ(validate_sonar(bad),
-            "sonar.band.f_hi_khz = 5 must be a finite number greater than 10 (sonar.band.f_lo_khz)");
+  EXPECT_EQ(
+      validate_sonar(bad),
+      "sonar.band.f_hi_khz = 5 must be a finite number greater than 10 (sonar.band.f_lo_khz)");
 }
 
 const std::vector<double> kDepths{10, 20, 30, 40, 50};
@@ -208,12 +218,18 @@ TEST(GramBestDepth, AnObjectiveZeroEverywhereGivesTheShallowestAllowedDepthWitho
 
 TEST(GramBestDepth, LimitsThatExcludeEveryDepthOrContradictAreErrors) {
   const std::vector<double> o(5, 0.5);
-  EXPECT_EQ(error_of([&] { best_depth(kDepths, o, {60, 100, 0}, 200); }),
+  EXPECT_EQ(error_of([&] {
+              best_depth(kDepths, o, {60, 100, 0}, 200);
+            }),
             "no receiver depth lies within the vehicle's limits [60, 100] m (max_depth_m 100, "
             "bottom 200 m − min_altitude_m 0; grid depths 10 to 50 m)");
-  EXPECT_EQ(error_of([&] { best_depth(kDepths, o, {30, 20, 0}, 200); }),
+  EXPECT_EQ(error_of([&] {
+              best_depth(kDepths, o, {30, 20, 0}, 200);
+            }),
             "limits.max_depth_m = 20 must be a finite number of at least 30 (limits.min_depth_m)");
-  EXPECT_EQ(error_of([&] { best_depth(kDepths, o, {0, 20, -1}, 200); }),
+  EXPECT_EQ(error_of([&] {
+              best_depth(kDepths, o, {0, 20, -1}, 200);
+            }),
             "limits.min_altitude_m = -1 must be a finite number of at least 0");
 }
 
