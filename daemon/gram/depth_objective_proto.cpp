@@ -1,0 +1,85 @@
+// Depth objective wire conversion (see depth_objective_proto.h).
+#include "gram/depth_objective_proto.h"
+
+#include <stdexcept>
+
+namespace acomms::gram {
+
+DepthObjectiveRequest request_from_proto(const DepthObjectiveQuery& q) {
+  DepthObjectiveRequest r;
+  r.range_m = q.range_m();
+  r.speed_mps = q.speed_mps();
+  r.heading_deg = q.heading_deg();
+  r.horizon_s = q.horizon_s();
+  switch (q.h_max_case()) {
+    case DepthObjectiveQuery::kHMaxDb:
+      r.h_max_db = q.h_max_db();
+      break;
+    case DepthObjectiveQuery::kHMaxWindowMaximum:
+      if (!q.h_max_window_maximum())
+        throw std::invalid_argument(
+            "h_max_window_maximum = false: set h_max_db for a fixed H_max instead");
+      r.h_max_db = std::nullopt;
+      break;
+    default:
+      if (!q.has_sonar())
+        throw std::invalid_argument(
+            "h_max is not set: give h_max_db (e.g. 108) or h_max_window_maximum = true");
+      r.h_max_db = std::nullopt;  // unused: the sonar objective replaces eq. 4.3
+  }
+  if (!q.has_limits())
+    throw std::invalid_argument("limits is not set: give min_depth_m, max_depth_m, min_altitude_m");
+  r.limits = {q.limits().min_depth_m(), q.limits().max_depth_m(), q.limits().min_altitude_m()};
+  if (q.has_lowpass())
+    r.lowpass = LowpassOptions{q.lowpass().cutoff_per_m(), q.lowpass().zero_phase()};
+  if (q.has_sonar()) {
+    const SonarEquationOptions& s = q.sonar();
+    SonarOptions o;
+    o.source_level_db = s.source_level_db();
+    o.array_gain_db = s.array_gain_db();
+    o.threshold_db = s.threshold_db();
+    if (s.has_noise_decrease_db_per_km()) o.noise_decrease_db_per_km = s.noise_decrease_db_per_km();
+    switch (s.noise_case()) {
+      case SonarEquationOptions::kNoiseLevelDb:
+        o.noise_level_db = s.noise_level_db();
+        break;
+      case SonarEquationOptions::kNoiseBand:
+        o.band = {s.noise_band().f_lo_khz(), s.noise_band().f_hi_khz(), s.noise_band().shipping(),
+                  s.noise_band().wind_mps()};
+        break;
+      default:
+        throw std::invalid_argument("sonar.noise is not set: give noise_level_db or noise_band");
+    }
+    r.sonar = o;
+  }
+  if (auto e = validate_depth_objective_request(r)) throw std::invalid_argument(*e);
+  return r;
+}
+
+DepthObjectiveReply reply_to_proto(const DepthObjectiveResult& result) {
+  DepthObjectiveReply a;
+  a.set_window_begin_m(result.window.begin_m);
+  a.set_window_end_m(result.window.end_m);
+  a.set_window_widened(result.window.widened);
+  a.set_ranges_in_window(static_cast<std::uint32_t>(result.ranges_in_window));
+  a.set_h_max_db(result.h_max_db);
+  a.set_bottom_m(result.bottom_m);
+  a.set_best_depth_m(result.best.depth_m);
+  a.set_best_objective(result.best.objective);
+  a.set_any_signal(result.best.any_signal);
+  if (result.critical_depth_m) a.set_critical_depth_m(*result.critical_depth_m);
+  for (std::size_t i = 0; i < result.depth_m.size(); ++i) {
+    auto* p = a.add_points();
+    p->set_depth_m(result.depth_m[i]);
+    p->set_h_bar_db(result.h_bar_db[i]);
+    p->set_band_low_db(result.band_low_db[i]);
+    p->set_band_high_db(result.band_high_db[i]);
+    p->set_objective(result.objective[i]);
+    p->set_objective_filtered(result.objective_filtered[i]);
+    if (i < result.signal_excess_db.size()) p->set_signal_excess_db(result.signal_excess_db[i]);
+    if (i < result.noise_level_db.size()) p->set_noise_level_db(result.noise_level_db[i]);
+  }
+  return a;
+}
+
+}  // namespace acomms::gram
