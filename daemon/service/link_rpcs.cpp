@@ -54,6 +54,8 @@ grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatu
     counters->set_messages_delivered(stats.messages_delivered);
     counters->set_duplicates_dropped(node_.queues.duplicates());
     counters->set_malformed_frames(node_.queues.malformed_frames());
+    counters->set_receptions_with_figures(stats.receptions_with_figures);
+    counters->set_bad_frames_received(stats.bad_frames_received);
   });
   return grpc::Status::OK;
 }

@@ -1,5 +1,6 @@
 #include "micromodem/reception.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "core/core_thread.h"
@@ -15,6 +16,30 @@ std::string describe_link_quality(const nmea::ReceiveStatistics& s) {
                 "packet_type=%d bad_frames=%d psk_error=%d",
                 s.snr_in, s.snr_out, s.spl, s.mse, s.doppler, s.packet_type, s.bad_frames, s.psk_error);
   return text;
+}
+
+v1::ReceptionFigures figures_of(const nmea::ReceiveStatistics& s) {
+  v1::ReceptionFigures f;
+  f.set_snr_in_db(s.snr_in);
+  f.set_signal_level_db(s.spl);
+  f.set_rss_db(s.rss);
+  f.set_noise_db(s.noise);
+  f.set_doppler_mps(s.doppler);
+  f.set_packet_type(s.packet_type);
+  f.set_frames(static_cast<uint32_t>(std::max(0, s.frames)));
+  f.set_bad_frames(static_cast<uint32_t>(std::max(0, s.bad_frames)));
+  bool psk = s.packet_type == nmea::kPacketPsk || s.packet_type == nmea::kPacketPskMini ||
+             s.packet_type == nmea::kPacketFdp;
+  if (psk) {
+    // Equalizer figures mean nothing for FSK packets (the modem writes 0).
+    f.set_snr_out_db(s.snr_out);
+    f.set_snr_symbol_db(s.snr_symbol);
+    f.set_mse_db(s.mse);
+    f.set_psk_error(s.psk_error);
+  } else {
+    f.set_data_quality_factor(s.dqf);
+  }
+  return f;
 }
 
 Reception::Reception(std::function<double()> now_seconds, Deliver deliver)
@@ -84,7 +109,10 @@ void Reception::close(const nmea::ReceiveStatistics* statistics) {
   rx.set_ack_requested(record.ack_requested);
   for (std::string& frame : record.frames) rx.add_frame(std::move(frame));
   rx.set_time(now_seconds_());
-  if (statistics != nullptr) rx.set_link_quality(describe_link_quality(*statistics));
+  if (statistics != nullptr && statistics->mode != 2) {
+    rx.set_link_quality(describe_link_quality(*statistics));
+    *rx.mutable_figures() = figures_of(*statistics);
+  }
   ++counters_.data_delivered;
   counters_.frames += static_cast<uint64_t>(rx.frame_size());
   deliver_(std::move(rx));

@@ -33,6 +33,8 @@ namespace acomms::drivers::micromodem {
 
 // "snr_in_db=12.5 snr_out_db=9.1 ..." from a $CACST, for link_quality.
 std::string describe_link_quality(const ::acomms::micromodem::ReceiveStatistics& statistics);
+// The $CACST fields as ReceptionFigures (PSK-only fields only for PSK packets).
+v1::ReceptionFigures figures_of(const ::acomms::micromodem::ReceiveStatistics& statistics);
 
 class Reception {
  public:
