@@ -156,7 +156,12 @@ TEST_P(MicroModemTwoNode, ACommandReachesTheVehicleWithLinkFiguresAndTheModemsAc
   EXPECT_TRUE(cleared) << "the modem's ACK did not clear the topside's queue:\n" << daemons_[2]->stderr_text();
   EXPECT_GE(link_status(1).counters().receptions_with_figures(), 1u);
   EXPECT_GE(link_status(2).counters().acks_received(), 1u);
-  EXPECT_TRUE(fs::exists(dir_ / "vehicle" / "link-raw.log"));
+  // The raw link log, through acommsctl: the vehicle's start-up set SRC 1.
+  RunResult raw = run(ACOMMSCTL_BINARY, {"--socket", socket(1), "link", "raw", "--no-follow", "-n", "100000"},
+                      (dir_ / "raw").string());
+  EXPECT_EQ(raw.exit_code, 0) << raw.err;
+  EXPECT_NE(raw.out.find(" >> $CCCFG,SRC,1*"), std::string::npos) << raw.out.substr(0, 2000);
+  EXPECT_NE(raw.out.find(" << $CACFG,SRC,1*"), std::string::npos);
 }
 
 INSTANTIATE_TEST_SUITE_P(Rates, MicroModemTwoNode, ::testing::Values(0, 5),

@@ -187,9 +187,9 @@ void MicroModemDriver::on_startup_done(const std::string& error) {
   ready_ = true;
   if (startup_->generation()) generation_ = startup_->generation();
   if (!startup_->revision().empty()) revision_ = startup_->revision();
-  const char* kind = !generation_ ? "Micro-Modem (revision not seen yet)"
-                     : *generation_ == ModemGeneration::kMM1 ? "MM1" : "MM2";
-  spdlog::info("{}: {} {} ready on {} (SRC {})", label_, kind, revision_, port_->name(), id_);
+  std::string kind = !generation_ ? "Micro-Modem (revision not seen yet)"
+                     : (*generation_ == ModemGeneration::kMM1 ? "MM1 " : "MM2 ") + revision_;
+  spdlog::info("{}: {} ready on {} (SRC {})", label_, kind, port_->name(), id_);
 }
 
 void MicroModemDriver::on_reboot() {
