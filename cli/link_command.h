@@ -1,5 +1,6 @@
 #pragma once
-// `acommsctl link status|cycle`: the modem driver and the MAC's slot cycle.
+// `acommsctl link status|cycle|raw`: the modem driver, the MAC's slot cycle,
+// and the raw link log (link_raw_command.h).
 
 #include <CLI/CLI.hpp>
 

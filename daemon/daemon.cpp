@@ -125,6 +125,14 @@ void Daemon::build_link() {
         subscribers_.publish(service::to_received_message(message, from));
       },
       link::LinkOptions::from_config(config_.mac(), scheduler_->clock()));
+  // A serial modem's sentences, kept for debugging (link/raw_log.h). The
+  // simulator's and udp's binary datagrams are not worth the disk.
+  if (name == "micromodem") {
+    uint64_t bytes = config_.driver().micromodem().raw_log_bytes();
+    raw_log_ = std::make_unique<link::RawLog>(std::filesystem::path(config_.data_dir()) / "link-raw.log",
+                                              bytes == 0 ? 4u << 20 : bytes, clock_);
+    link_->set_raw_tap([this](std::string_view raw, bool outgoing) { raw_log_->record(raw, outgoing); });
+  }
 }
 
 // Messages expire on time even when no transmission comes to notice them.

@@ -15,6 +15,7 @@
 #include "link/driver_registry.h"
 #include "link/driver_supervisor.h"
 #include "link/link_controller.h"
+#include "link/raw_log.h"
 #include "mac/mac.h"
 #include "dccl/codec.h"
 #include "queue/queue_manager.h"
@@ -70,6 +71,7 @@ class Daemon {
   // LinkController that binds them to the queues.
   std::unique_ptr<core::AsioScheduler> scheduler_;
   link::DriverRegistry drivers_;
+  std::unique_ptr<link::RawLog> raw_log_;  // outlives link_, which writes to it
   std::unique_ptr<link::DriverSupervisor> driver_;
   std::unique_ptr<mac::Mac> mac_;
   std::unique_ptr<link::LinkController> link_;

@@ -51,7 +51,8 @@ void LinkController::start() {
   callbacks.on_transmit_result = [this](const v1::ModemTransmission& t, bool ok, const std::string& error) {
     on_transmit_result(t, ok, error);
   };
-  callbacks.on_raw = [](std::string_view bytes, bool outgoing) {
+  callbacks.on_raw = [this](std::string_view bytes, bool outgoing) {
+    if (raw_tap_) raw_tap_(bytes, outgoing);
     if (spdlog::should_log(spdlog::level::trace)) {
       spdlog::trace("link {} {} bytes", outgoing ? ">>" : "<<", bytes.size());
     }
@@ -153,6 +154,10 @@ void LinkController::on_receive(const v1::ModemTransmission& transmission) {
   }
   if (transmission.type() != v1::ModemTransmission::DATA) return;
   ++stats_.data_received;
+  if (transmission.has_figures()) {
+    ++stats_.receptions_with_figures;
+    stats_.bad_frames_received += transmission.figures().bad_frames();
+  }
   // Frames are filtered message by message (destination roles), not by the
   // transmission's dest: a unicast frame may carry broadcast messages.
   for (const std::string& frame : transmission.frame()) {

@@ -17,6 +17,7 @@
 #include <map>
 #include <set>
 #include <tuple>
+#include <string_view>
 #include <vector>
 
 #include "acomms/v1/modem_transmission.pb.h"
@@ -34,6 +35,8 @@ struct LinkStats {
   uint64_t data_received = 0;      // DATA transmissions heard (any destination)
   uint64_t acks_received = 0;      // ACKs for this node
   uint64_t messages_delivered = 0;
+  uint64_t receptions_with_figures = 0;  // DATA that carried the modem's ReceptionFigures
+  uint64_t bad_frames_received = 0;      // frames those packets lost (figures.bad_frames)
 };
 
 struct LinkOptions {
@@ -65,6 +68,9 @@ class LinkController {
   void stop();
 
   const LinkStats& stats() const { return stats_; }
+  // Every chunk of bytes to (outgoing) and from the device, as the driver
+  // reports it (the raw link log). Set before start().
+  void set_raw_tap(std::function<void(std::string_view bytes, bool outgoing)> tap) { raw_tap_ = std::move(tap); }
 
  private:
   void on_data_request(v1::ModemTransmission* transmission);
@@ -86,6 +92,7 @@ class LinkController {
   // frame index: an ACK names indices, the queues know frame ids.
   std::map<int32_t, std::vector<uint64_t>> awaiting_ack_;
   LinkStats stats_;
+  std::function<void(std::string_view, bool)> raw_tap_;
 };
 
 }  // namespace acomms::link

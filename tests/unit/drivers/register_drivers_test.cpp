@@ -15,7 +15,7 @@ using std::chrono::seconds;
 
 TEST(RegisterDriversTest, SimAndUdpByName) {
   link::DriverRegistry registry = link::DriverRegistry::linked();
-  EXPECT_EQ(registry.names(), (std::vector<std::string>{"sim", "udp"}));
+  EXPECT_EQ(registry.names(), (std::vector<std::string>{"micromodem", "sim", "udp"}));
 
   core::SimulatedScheduler scheduler(core::Clock::time_point(seconds(1'700'000'000)));
   v1::DriverConfig config;
@@ -44,6 +44,27 @@ TEST(RegisterDriversTest, SimAndUdpByName) {
   driver->stop();
 }
 
+TEST(RegisterDriversTest, MicroModemByNameNeedsAnEventLoopAndAPort) {
+  link::DriverRegistry registry = link::DriverRegistry::linked();
+  core::SimulatedScheduler scheduler(core::Clock::time_point(seconds(1'700'000'000)));
+  v1::DriverConfig config;
+  config.set_name("micromodem");
+  config.mutable_micromodem()->set_port("tcp:127.0.0.1:1");
+  EXPECT_THROW(registry.create("micromodem", {config, scheduler}), std::invalid_argument);  // no event loop
+  asio::io_context io;
+  auto driver = registry.create("micromodem", {config, scheduler, &io});
+  ASSERT_NE(driver, nullptr);
+  config.mutable_micromodem()->clear_port();
+  try {
+    registry.create("micromodem", {config, scheduler, &io});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("driver.micromodem.port"), std::string::npos);
+  }
+  config.mutable_micromodem()->set_port("tcp:nohostport");
+  EXPECT_THROW(registry.create("micromodem", {config, scheduler, &io}), std::invalid_argument);
+}
+
 TEST(RegisterDriversTest, UnknownNameListsTheLinkedDrivers) {
   core::SimulatedScheduler scheduler(core::Clock::time_point(seconds(1'700'000'000)));
   v1::DriverConfig config;
@@ -51,7 +72,7 @@ TEST(RegisterDriversTest, UnknownNameListsTheLinkedDrivers) {
     link::DriverRegistry::linked().create("micromodem9", {config, scheduler});
     FAIL() << "built a driver nobody registered";
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), "no driver \"micromodem9\" (known: sim, udp)");
+    EXPECT_EQ(std::string(e.what()), "no driver \"micromodem9\" (known: micromodem, sim, udp)");
   }
 }
 

@@ -1,0 +1,379 @@
+#include "micromodem/micromodem_driver.h"
+
+#include <spdlog/spdlog.h>
+
+#include <stdexcept>
+
+#include "core/core_thread.h"
+#include "link/transmission_rules.h"
+#include "micromodem/nmea/config_sentences.h"
+#include "micromodem/nmea/cycle_sentences.h"
+#include "micromodem/nmea/receive_sentences.h"
+#include "micromodem/nmea/statistics_sentences.h"
+
+namespace acomms::drivers::micromodem {
+
+namespace nmea = ::acomms::micromodem;
+using nmea::Sentence;
+using v1::ModemTransmission;
+
+namespace {
+
+constexpr std::chrono::seconds kKeepAlive{10};  // §4.5: a query every ~10 s
+constexpr int kDeadAfter = 5;                   // unanswered commands in a row (§9)
+
+Duration seconds_or(double seconds, Duration fallback) {
+  if (seconds <= 0) return fallback;
+  return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(seconds));
+}
+
+std::vector<ConfigParameter> user_cfg_of(const v1::DriverConfig& config) {
+  std::vector<ConfigParameter> cfg;
+  for (const std::string& entry : config.micromodem().cfg()) cfg.push_back(parse_cfg_entry(entry));
+  return cfg;
+}
+
+double scale_of(const v1::DriverConfig& config) {
+  double scale = config.micromodem().time_scale();
+  if (scale < 0) throw std::invalid_argument("driver.micromodem.time_scale must be > 0 (0: real time)");
+  return scale == 0 ? 1 : scale;
+}
+
+CycleTimeouts cycle_timeouts(const v1::DriverConfig& config) {
+  CycleTimeouts t;
+  if (config.micromodem().max_range_m() > 0) t.max_range_m = config.micromodem().max_range_m();
+  t.time_scale = scale_of(config);
+  return t;
+}
+
+}  // namespace
+
+MicroModemDriver::MicroModemDriver(const v1::DriverConfig& config, core::Scheduler& scheduler,
+                                   std::unique_ptr<ModemPort> port)
+    : id_(link::own_modem_id(config)),
+      label_("micromodem " + std::to_string(id_)),
+      scheduler_(scheduler),
+      port_(std::move(port)),
+      user_cfg_(user_cfg_of(config)),
+      time_scale_(scale_of(config)),
+      sequence_({label_, id_, 0, 0, /*software_acks=*/false},
+                {[this](const ModemTransmission& tx, bool report) { return send(tx, report); }}),
+      bad_input_(label_),
+      commands_(scheduler, [this](const Sentence& s) { write(s); },
+                scaled(seconds_or(config.micromodem().command_timeout_s(), std::chrono::seconds(5)))),
+      cycle_(scheduler, id_, cycle_timeouts(config),
+             {[this](const Sentence& s) { write(s); },
+              [this](const ModemTransmission& tx, bool ok, const std::string& error) {
+                if (sequence_.running()) sequence_.report(tx, ok, error);
+              },
+              [this](const ModemTransmission& tx, Duration wait) { acks_.expect(tx, wait); }}),
+      reception_([this] { return now_seconds(); },
+                 [this](ModemTransmission rx) { sequence_.on_received(rx); }),
+      acks_(scheduler, id_, [this](const ModemTransmission& ack) { sequence_.on_received(ack); }) {
+  if (id_ > nmea::kMaxAddress) {
+    throw std::invalid_argument("driver.modem_id " + std::to_string(id_) + " is not a Micro-Modem address (1..127)");
+  }
+  if (port_ == nullptr) throw std::invalid_argument("micromodem driver built without a port");
+}
+
+MicroModemDriver::~MicroModemDriver() { stop(); }
+
+Duration MicroModemDriver::scaled(Duration d) const {
+  return std::chrono::duration_cast<Duration>(d / time_scale_);
+}
+
+double MicroModemDriver::now_seconds() const {
+  return std::chrono::duration<double>(scheduler_.clock().now().time_since_epoch()).count();
+}
+
+void MicroModemDriver::start(link::DriverCallbacks callbacks) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  stop();
+  sequence_.start(std::move(callbacks));
+  fatal_.clear();
+  last_line_ = scheduler_.clock().now();
+  port_->open([this](std::string_view bytes) { on_bytes(bytes); },
+              [this](link::TransportState state, const std::string& detail) { on_port_state(state, detail); });
+  spdlog::info("{}: opening {}", label_, port_->name());
+}
+
+void MicroModemDriver::stop() {
+  port_->close();
+  startup_.reset();
+  ready_ = false;
+  // Failures of what was in flight still reach the sequence's owner.
+  cycle_.abort("the driver stopped");
+  commands_.clear("the driver stopped");
+  acks_.reset();
+  reception_.reset();
+  framer_.reset();
+  sequence_.stop();
+}
+
+void MicroModemDriver::do_work() {
+  ACOMMS_ASSERT_CORE_THREAD();
+  sequence_.check_running();
+  if (!fatal_.empty()) throw link::DriverError(label_ + ": " + fatal_);
+  if (commands_.consecutive_failures() >= kDeadAfter) {
+    bad_input_.note("silent modem", std::to_string(kDeadAfter) + " commands in a row unanswered",
+                    scheduler_.clock().now());
+    throw link::DriverError(label_ + ": the modem on " + port_->name() + " is silent: " +
+                            std::to_string(kDeadAfter) + " commands in a row were not answered");
+  }
+  keep_alive();
+}
+
+void MicroModemDriver::keep_alive() {
+  if (!ready_ || !cycle_.idle() || !commands_.idle()) return;
+  if (scheduler_.clock().now() - last_line_ < scaled(kKeepAlive)) return;
+  last_line_ = scheduler_.clock().now();  // one probe per quiet period
+  commands_.push({to_sentence(nmea::ConfigQuery{"SRC"}),
+                  [](const Sentence& s) { return s.is("CACFG") && s.field(1) == "SRC"; },
+                  [this](bool ok, const Sentence*, const std::string& why) {
+                    // (Not when the queue was cleared: a reboot, stop().)
+                    if (!ok && why.starts_with("no reply")) {
+                      bad_input_.note("silent modem", "keep-alive: " + why, scheduler_.clock().now());
+                    }
+                  },
+                  1});
+}
+
+void MicroModemDriver::initiate_transmission(const ModemTransmission& transmission) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  sequence_.transmit(transmission);
+}
+
+std::string MicroModemDriver::send(const ModemTransmission& tx, bool) {
+  if (tx.type() != ModemTransmission::DATA) {
+    return "the micromodem driver sends DATA and polls only (asked for type " + std::to_string(tx.type()) + ")";
+  }
+  if (!ready_) return "the modem is not ready (start-up in progress)";
+  if (!commands_.idle()) return "busy: a command to the modem is waiting for its reply";
+  return cycle_.start(tx, answering_poll_);
+}
+
+void MicroModemDriver::on_port_state(link::TransportState state, const std::string& detail) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (state == link::TransportState::kOpen) {
+    framer_.reset();  // stale bytes from before (§10 quirk 20)
+    spdlog::info("{}: {} open; starting the modem", label_, detail);
+    begin_startup();
+  } else if (state == link::TransportState::kWaiting) {
+    // The transport would reconnect, but the modem's state is unknown
+    // then: a restart of the whole driver (with backoff) is clearer.
+    ready_ = false;
+    cycle_.abort("the port to the modem was lost");
+    fatal_ = "the port was lost: " + detail;
+  }
+}
+
+void MicroModemDriver::begin_startup() {
+  ready_ = false;
+  StartupSequence::Options options;
+  options.own_id = id_;
+  options.user_cfg = user_cfg_;
+  options.listen = scaled(std::chrono::seconds(2));
+  startup_ = std::make_unique<StartupSequence>(commands_, scheduler_, options,
+                                               [this](const std::string& error) { on_startup_done(error); });
+  startup_->begin();
+}
+
+void MicroModemDriver::on_startup_done(const std::string& error) {
+  if (!error.empty()) {
+    fatal_ = error;
+    spdlog::error("{}: {}", label_, error);
+    return;
+  }
+  ready_ = true;
+  if (startup_->generation()) generation_ = startup_->generation();
+  if (!startup_->revision().empty()) revision_ = startup_->revision();
+  std::string kind = !generation_ ? "Micro-Modem (revision not seen yet)"
+                     : (*generation_ == ModemGeneration::kMM1 ? "MM1 " : "MM2 ") + revision_;
+  spdlog::info("{}: {} ready on {} (SRC {})", label_, kind, port_->name(), id_);
+}
+
+void MicroModemDriver::on_reboot() {
+  if (ready_) {
+    ++reboots_;
+    spdlog::warn("{}: the modem rebooted ($CAREV INIT): failing the exchange in progress, applying the settings again",
+                 label_);
+  } else {
+    spdlog::info("{}: the modem is booting ($CAREV INIT)", label_);
+  }
+  // The start-up first: its pending commands then fail without reaching it.
+  startup_.reset();
+  commands_.clear("the modem rebooted");
+  cycle_.abort("the modem rebooted ($CAREV INIT) during the exchange");
+  acks_.reset();
+  reception_.reset();
+  begin_startup();  // listens for the AUV line first: the modem is booting (§4.1)
+}
+
+void MicroModemDriver::write(const Sentence& sentence) {
+  std::string line = nmea::serialize(sentence);
+  if (sequence_.callbacks().on_raw) sequence_.callbacks().on_raw(line, true);
+  line += nmea::kLineEnd;
+  if (!port_->write(line)) spdlog::debug("{}: port not open, dropped {}", label_, line.substr(0, line.size() - 2));
+}
+
+void MicroModemDriver::on_bytes(std::string_view bytes) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (!sequence_.running()) return;
+  std::vector<std::string> lines = framer_.push(bytes);
+  const auto& now_counters = framer_.counters();
+  auto now = scheduler_.clock().now();
+  bad_input_.note("noise", "bytes outside any sentence", now, now_counters.noise_bytes - framer_seen_.noise_bytes);
+  bad_input_.note("truncated line", "a sentence cut short by a new '$'", now,
+                  now_counters.truncated_lines - framer_seen_.truncated_lines);
+  bad_input_.note("over-long line", "longer than " + std::to_string(nmea::kMaxLineLength) + " characters", now,
+                  now_counters.overlong_lines - framer_seen_.overlong_lines);
+  framer_seen_ = now_counters;
+  for (const std::string& line : lines) {
+    if (!sequence_.running()) return;  // a callback stopped the driver
+    on_line(line);
+  }
+}
+
+void MicroModemDriver::on_line(const std::string& line) {
+  last_line_ = scheduler_.clock().now();
+  if (sequence_.callbacks().on_raw) sequence_.callbacks().on_raw(line, false);
+  auto sentence = nmea::parse_sentence(line);
+  if (!sentence) {
+    bad_input_.note(std::string(nmea::to_string(sentence.error().kind)), sentence.error().text, last_line_);
+    return;
+  }
+  dispatch(*sentence);
+}
+
+template <typename T>
+bool MicroModemDriver::parsed(const nmea::Result<T>& result, const Sentence& sentence) {
+  if (result) return true;
+  bad_input_.note("malformed " + sentence.address(), result.error().text, scheduler_.clock().now());
+  return false;
+}
+
+void MicroModemDriver::dispatch(const Sentence& s) {
+  if (s.talker == "CA") {
+    const std::string& t = s.type;
+    if (t == "REV") return on_revision(s);
+    if (t == "CFG" || t == "CLK") {
+      commands_.on_sentence(s);  // else a line of a dump, or a late echo
+      return;
+    }
+    if (t == "CYC") return on_cycle(s);
+    if (t == "ERR") return on_error(s);
+    if (t == "DRQ") {
+      auto r = nmea::parse_data_request(s);
+      if (parsed(r, s)) cycle_.on_data_request(*r);
+      return;
+    }
+    if (t == "TXD") {
+      auto r = nmea::parse_transmit_data_accepted(s);
+      parsed(r, s);
+      return;
+    }
+    if (t == "TXP") {
+      auto r = nmea::parse_transmit_started(s);
+      if (parsed(r, s)) cycle_.on_transmit_started(*r);
+      return;
+    }
+    if (t == "TXF") {
+      auto r = nmea::parse_transmit_finished(s);
+      if (parsed(r, s)) cycle_.on_transmit_finished(*r);
+      return;
+    }
+    if (t == "XST") {
+      auto r = nmea::parse_transmit_statistics(s);
+      if (parsed(r, s)) cycle_.on_transmit_statistics(*r);
+      return;
+    }
+    if (t == "RXP") {
+      auto r = nmea::parse_receive_started(s);
+      if (parsed(r, s)) reception_.on_receive_started();
+      return;
+    }
+    if (t == "RXD") {
+      auto r = nmea::parse_received_data(s);
+      if (parsed(r, s)) reception_.on_data(*r);
+      return;
+    }
+    if (t == "MSG") {
+      auto r = nmea::parse_transaction_message(s);
+      if (parsed(r, s)) {
+        reception_.on_message(*r);
+        cycle_.on_message(*r);
+      }
+      return;
+    }
+    if (t == "CST") {
+      auto r = nmea::parse_receive_statistics(s);
+      if (parsed(r, s)) reception_.on_statistics(*r);
+      acks_.on_statistics();
+      return;
+    }
+    if (t == "ACK") {
+      auto r = nmea::parse_acknowledgement(s);
+      if (parsed(r, s)) acks_.on_ack(*r);
+      return;
+    }
+    // Known and not needed by a data driver (clock and device queries,
+    // ping/LBL/mini-packet echoes, MM2 clock reports).
+    static const char* const kIgnored[] = {"TMS", "TMQ", "TMG", "ALQ", "CLQ", "MPC", "MPA", "MPR", "MUC", "MUA",
+                                           "MUR", "MEC", "MEA", "MER", "MSC", "MSA", "MSR", "TDP", "RDP", "CDR",
+                                           "DQF", "DOP", "MFD", "SHF", "SNR", "TOA", "RXA", "TXA"};
+    for (const char* ignored : kIgnored) {
+      if (t == ignored) return;
+    }
+  } else if (s.talker == "SN" || s.talker == "GP") {
+    return;  // navigation and forwarded GPS: not used by this driver
+  }
+  bad_input_.note("unknown sentence", "$" + s.address() + " ignored", scheduler_.clock().now());
+}
+
+void MicroModemDriver::on_revision(const Sentence& s) {
+  auto revision = nmea::parse_revision(s);
+  if (!parsed(revision, s)) return;
+  if (revision->is_boot()) return on_reboot();
+  if (revision->identifier == "AUV") {
+    auto generation = nmea::modem_generation(revision->revision);
+    if (generation) generation_ = *generation;
+    revision_ = revision->revision;
+  }
+  if (startup_) startup_->on_revision(*revision);
+}
+
+void MicroModemDriver::on_cycle(const Sentence& s) {
+  auto cycle = nmea::parse_cycle(s);
+  if (!parsed(cycle, s)) return;
+  if (cycle_.on_cycle(*cycle)) return;  // the echo of our $CCCYC
+  reception_.on_cycle(*cycle);
+  // ADR1 = our SRC from the water: another node polls us (§8.2).
+  if (cycle->source == id_ && ready_ && cycle_.idle()) answer_poll(*cycle);
+}
+
+void MicroModemDriver::answer_poll(const nmea::Cycle& cycle) {
+  // A frameless DATA under our own id is how driver_sequence recognises a
+  // poll for us; it asks the queues and calls send(), which then starts an
+  // exchange without a $CCCYC of ours (answering_poll_).
+  ModemTransmission poll;
+  poll.set_type(ModemTransmission::DATA);
+  poll.set_src(id_);
+  poll.set_dest(cycle.destination);
+  poll.set_rate(cycle.rate);
+  poll.set_ack_requested(cycle.ack);
+  poll.set_time(now_seconds());
+  answering_poll_ = true;
+  sequence_.on_received(poll);
+  answering_poll_ = false;
+}
+
+void MicroModemDriver::on_error(const Sentence& s) {
+  auto error = nmea::parse_modem_error(s);
+  if (!parsed(error, s)) return;
+  bad_input_.note("modem error", "$CAERR " + error->module + " " + error->number + " " + error->message,
+                  scheduler_.clock().now());
+  if (commands_.on_error(*error)) return;
+  cycle_.on_error(*error);
+}
+
+}  // namespace acomms::drivers::micromodem

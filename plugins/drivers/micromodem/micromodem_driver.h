@@ -1,0 +1,119 @@
+#pragma once
+// "micromodem": the WHOI Micro-Modem (MM1 and MM2) over its NMEA-0183
+// interface (/work/shared/spec/micromodem-nmea.md; §11 maps it to
+// link/driver.h).
+//
+// The problem: the modem is a state machine of its own on a serial line
+// that may carry noise, reboots (`$CAREV` at any time), refusals and
+// silence; the MAC and the queues must see it as any other driver: one
+// result per transmission, received DATA, ACKs for our frames.
+// The decision: this class reads and writes lines and routes each sentence
+// to the one part that owns it, one concept per file:
+//   startup_sequence  — §4.6: revision, SRC = modem_id, NVRAM, user cfg, clock
+//   command_queue     — one command at a time, echo-confirmed, retried
+//   data_cycle        — $CCCYC / $CADRQ / $CCTXD / transmit reports, polls
+//   reception         — $CARXP … $CACST into DATA transmissions
+//   ack_tracker       — the modem's $CAACK into one ACK per packet
+//   bad_input_log     — counted, logged once per burst
+// The DriverSequence (link/driver_sequence.h) makes the decisions every
+// driver shares (data request before the cycle, polls, what on_receive
+// sees); the modem acknowledges in hardware, so software_acks is off.
+//
+// Failures the supervisor should restart the driver for (DriverError from
+// do_work): a start-up that fails (no answer, a refused setting — named),
+// the port lost, five commands in a row unanswered. A modem reboot is not
+// one: the exchange in progress fails, the settings are applied again, and
+// the driver carries on.
+//
+// Core thread only.
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "acomms/v1/config.pb.h"
+#include "core/scheduler.h"
+#include "link/driver.h"
+#include "link/driver_sequence.h"
+#include "micromodem/ack_tracker.h"
+#include "micromodem/bad_input_log.h"
+#include "micromodem/command_queue.h"
+#include "micromodem/data_cycle.h"
+#include "micromodem/modem_port.h"
+#include "micromodem/nmea/line_framer.h"
+#include "micromodem/reception.h"
+#include "micromodem/startup_sequence.h"
+
+namespace acomms::drivers::micromodem {
+
+class MicroModemDriver final : public link::Driver {
+ public:
+  // Throws std::invalid_argument for a bad driver.micromodem config (named).
+  MicroModemDriver(const v1::DriverConfig& config, core::Scheduler& scheduler, std::unique_ptr<ModemPort> port);
+  ~MicroModemDriver() override;
+
+  void start(link::DriverCallbacks callbacks) override;
+  void stop() override;
+  void do_work() override;
+  void initiate_transmission(const v1::ModemTransmission& transmission) override;
+
+  int32_t modem_id() const { return id_; }
+  // Start-up finished and no reboot since.
+  bool ready() const { return ready_; }
+  std::optional<ModemGeneration> generation() const { return generation_; }
+  const std::string& revision() const { return revision_; }
+  // Reboots of a modem that was ready (its first boot is not one).
+  uint64_t reboots() const { return reboots_; }
+  const BadInputLog& bad_input() const { return bad_input_; }
+  const DataCycle::Counters& cycle_counters() const { return cycle_.counters(); }
+  const Reception::Counters& reception_counters() const { return reception_.counters(); }
+  const AckTracker::Counters& ack_counters() const { return acks_.counters(); }
+
+ private:
+  void on_bytes(std::string_view bytes);
+  void on_port_state(link::TransportState state, const std::string& detail);
+  void on_line(const std::string& line);
+  void dispatch(const ::acomms::micromodem::Sentence& sentence);
+  void on_revision(const ::acomms::micromodem::Sentence& sentence);
+  void on_cycle(const ::acomms::micromodem::Sentence& sentence);
+  void on_error(const ::acomms::micromodem::Sentence& sentence);
+  void answer_poll(const ::acomms::micromodem::Cycle& cycle);
+  void write(const ::acomms::micromodem::Sentence& sentence);
+  void begin_startup();
+  void on_startup_done(const std::string& error);
+  void on_reboot();
+  void keep_alive();
+  // The DriverSequence's Medium::send: "" or why the modem cannot take it now.
+  std::string send(const v1::ModemTransmission& transmission, bool report);
+  double now_seconds() const;
+  Duration scaled(Duration d) const;
+  template <typename T>
+  bool parsed(const ::acomms::micromodem::Result<T>& result, const ::acomms::micromodem::Sentence& sentence);
+
+  int32_t id_;
+  std::string label_;
+  core::Scheduler& scheduler_;
+  std::unique_ptr<ModemPort> port_;
+  std::vector<ConfigParameter> user_cfg_;
+  double time_scale_ = 1;
+  link::DriverSequence sequence_;  // holds the callbacks between start() and stop()
+  ::acomms::micromodem::LineFramer framer_;
+  ::acomms::micromodem::LineFramer::Counters framer_seen_;
+  BadInputLog bad_input_;
+  CommandQueue commands_;
+  DataCycle cycle_;
+  Reception reception_;
+  AckTracker acks_;
+  std::unique_ptr<StartupSequence> startup_;
+  bool ready_ = false;
+  bool answering_poll_ = false;  // inside answer_poll(): send() starts a polled exchange
+  std::string fatal_;            // thrown as DriverError by do_work()
+  std::optional<ModemGeneration> generation_;
+  std::string revision_;
+  uint64_t reboots_ = 0;
+  core::Clock::time_point last_line_{};
+};
+
+}  // namespace acomms::drivers::micromodem

@@ -1,0 +1,65 @@
+#include "micromodem/modem_port.h"
+
+#include <stdexcept>
+
+#include "link/serial_transport.h"
+#include "link/tcp_client_transport.h"
+
+namespace acomms::drivers::micromodem {
+namespace {
+
+constexpr std::string_view kTcpPrefix = "tcp:";
+
+// Not done here: clearing RTS after opening a real MM2 serial port (spec
+// §1, §10 quirk 12) needs the port's descriptor, which SerialTransport does
+// not expose; a modem on a gateway (the usual MM2 set-up) is unaffected.
+class SerialPort final : public ModemPort {
+ public:
+  SerialPort(asio::io_context& context, link::SerialSettings settings)
+      : transport_(context, std::move(settings)) {}
+  void open(DataCallback on_data, link::TransportStateCallback on_state) override {
+    transport_.open(std::move(on_data), std::move(on_state));
+  }
+  void close() override { transport_.close(); }
+  bool write(std::string_view bytes) override { return transport_.write(bytes); }
+  std::string name() const override { return transport_.device(); }
+
+ private:
+  link::SerialTransport transport_;
+};
+
+class TcpPort final : public ModemPort {
+ public:
+  TcpPort(asio::io_context& context, const std::string& address) : transport_(context, address) {}
+  void open(DataCallback on_data, link::TransportStateCallback on_state) override {
+    transport_.open(std::move(on_data), std::move(on_state));
+  }
+  void close() override { transport_.close(); }
+  bool write(std::string_view bytes) override { return transport_.write(bytes); }
+  std::string name() const override { return "tcp:" + transport_.address(); }
+
+ private:
+  link::TcpClientTransport transport_;
+};
+
+}  // namespace
+
+std::unique_ptr<ModemPort> transport_port(const std::string& port, unsigned baud, asio::io_context& context) {
+  if (port.empty()) {
+    throw std::invalid_argument(
+        "driver.micromodem.port is empty: give the modem's serial device (\"/dev/ttyUSB0\") or \"tcp:HOST:PORT\"");
+  }
+  if (port.starts_with(kTcpPrefix)) {
+    std::string address = port.substr(kTcpPrefix.size());
+    if (address.find(':') == std::string::npos) {
+      throw std::invalid_argument("driver.micromodem.port \"" + port + "\": expected tcp:HOST:PORT");
+    }
+    return std::make_unique<TcpPort>(context, address);
+  }
+  link::SerialSettings settings;
+  settings.device = port;
+  settings.baud = baud == 0 ? 19200 : baud;
+  return std::make_unique<SerialPort>(context, settings);
+}
+
+}  // namespace acomms::drivers::micromodem

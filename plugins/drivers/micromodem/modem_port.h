@@ -1,0 +1,42 @@
+#pragma once
+// The byte stream to one Micro-Modem, whatever carries it.
+//
+// The problem: the driver must run against a serial port, a serial-to-TCP
+// gateway (spec §1) and, in tests, a fake modem on the simulated scheduler
+// with no file descriptor at all. The decision: the driver sees only this
+// interface; transport_port() builds the real one from the config's
+// `port` ("/dev/ttyUSB0" or "tcp:HOST:PORT"), tests plug in their own.
+//
+// Invariant: callbacks run on the core thread, never inside write(), and
+// never after close() returns.
+
+#include <asio/io_context.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "link/transport_state.h"
+
+namespace acomms::drivers::micromodem {
+
+class ModemPort {
+ public:
+  using DataCallback = std::function<void(std::string_view bytes)>;
+  virtual ~ModemPort() = default;
+  // Starts delivering bytes; returns at once (the transport reconnects by itself).
+  virtual void open(DataCallback on_data, link::TransportStateCallback on_state) = 0;
+  virtual void close() = 0;
+  // Queues bytes for the modem; false (dropped) while the port is not open.
+  virtual bool write(std::string_view bytes) = 0;
+  // "/dev/ttyUSB0", "tcp:127.0.0.1:40001": for logs and errors.
+  virtual std::string name() const = 0;
+};
+
+// A serial port (`port` a device path, at `baud`) or a TCP client
+// ("tcp:HOST:PORT"). Throws std::invalid_argument for an empty or malformed
+// port, naming driver.micromodem.port.
+std::unique_ptr<ModemPort> transport_port(const std::string& port, unsigned baud, asio::io_context& context);
+
+}  // namespace acomms::drivers::micromodem

@@ -1,0 +1,121 @@
+#include "micromodem/reception.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "core/core_thread.h"
+
+namespace acomms::drivers::micromodem {
+
+namespace nmea = ::acomms::micromodem;
+
+std::string describe_link_quality(const nmea::ReceiveStatistics& s) {
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "micromodem snr_in_db=%.1f snr_out_db=%.1f signal_level_db=%d mse_db=%.1f doppler=%.2f "
+                "packet_type=%d bad_frames=%d psk_error=%d",
+                s.snr_in, s.snr_out, s.spl, s.mse, s.doppler, s.packet_type, s.bad_frames, s.psk_error);
+  return text;
+}
+
+v1::ReceptionFigures figures_of(const nmea::ReceiveStatistics& s) {
+  v1::ReceptionFigures f;
+  f.set_snr_in_db(s.snr_in);
+  f.set_signal_level_db(s.spl);
+  f.set_rss_db(s.rss);
+  f.set_noise_db(s.noise);
+  f.set_doppler_mps(s.doppler);
+  f.set_packet_type(s.packet_type);
+  f.set_frames(static_cast<uint32_t>(std::max(0, s.frames)));
+  f.set_bad_frames(static_cast<uint32_t>(std::max(0, s.bad_frames)));
+  bool psk = s.packet_type == nmea::kPacketPsk || s.packet_type == nmea::kPacketPskMini ||
+             s.packet_type == nmea::kPacketFdp;
+  if (psk) {
+    // Equalizer figures mean nothing for FSK packets (the modem writes 0).
+    f.set_snr_out_db(s.snr_out);
+    f.set_snr_symbol_db(s.snr_symbol);
+    f.set_mse_db(s.mse);
+    f.set_psk_error(s.psk_error);
+  } else {
+    f.set_data_quality_factor(s.dqf);
+  }
+  return f;
+}
+
+Reception::Reception(std::function<double()> now_seconds, Deliver deliver)
+    : now_seconds_(std::move(now_seconds)), deliver_(std::move(deliver)) {}
+
+Reception::Record& Reception::open() {
+  if (!record_) record_.emplace();
+  return *record_;
+}
+
+void Reception::on_receive_started() {
+  ACOMMS_ASSERT_CORE_THREAD();
+  // A packet detected while another is unfinished: that one's $CACST is
+  // not coming (CST=0, or a line lost); close it with what it has.
+  if (record_) close(nullptr);
+  record_.emplace();
+}
+
+void Reception::on_cycle(const nmea::Cycle& cycle) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  Record& record = open();
+  // The second $CACYC of a PSK packet (its header) repeats the first.
+  if (!record.cycle) record.cycle = cycle;
+}
+
+void Reception::on_data(const nmea::ReceivedData& frame) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  Record& record = open();
+  if (!record.first_frame) record.first_frame = frame;
+  record.ack_requested = record.ack_requested || frame.ack;
+  if (!frame.data.empty()) record.frames.push_back(frame.data);
+}
+
+void Reception::on_message(const nmea::TransactionMessage& message) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (message.is_bad_crc()) {
+    // In place of a frame's $CARXD (or of a mini-packet): the frame is lost.
+    ++counters_.bad_frames;
+    open();
+  } else if (message.is_packet_timeout()) {
+    ++counters_.packet_timeouts;
+  }
+}
+
+void Reception::on_statistics(const nmea::ReceiveStatistics& statistics) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  ++counters_.packets;
+  close(&statistics);
+}
+
+void Reception::close(const nmea::ReceiveStatistics* statistics) {
+  if (!record_) return;
+  Record record = std::move(*record_);
+  record_.reset();
+  if (record.frames.empty()) return;  // a cycle-init, an ACK, a blank or damaged packet
+  v1::ModemTransmission rx;
+  rx.set_type(v1::ModemTransmission::DATA);
+  // $CARXD names source and destination for each frame; the cycle's
+  // (when heard) gives the rate.
+  rx.set_src(record.first_frame->source);
+  rx.set_dest(record.first_frame->destination);
+  if (statistics != nullptr && statistics->mode != 2) {
+    rx.set_rate(statistics->rate);
+  } else if (record.cycle) {
+    rx.set_rate(record.cycle->rate);
+  }
+  rx.set_ack_requested(record.ack_requested);
+  for (std::string& frame : record.frames) rx.add_frame(std::move(frame));
+  rx.set_time(now_seconds_());
+  if (statistics != nullptr && statistics->mode != 2) {
+    rx.set_link_quality(describe_link_quality(*statistics));
+    *rx.mutable_figures() = figures_of(*statistics);
+  }
+  ++counters_.data_delivered;
+  counters_.frames += static_cast<uint64_t>(rx.frame_size());
+  deliver_(std::move(rx));
+}
+
+}  // namespace acomms::drivers::micromodem

@@ -1,0 +1,78 @@
+#pragma once
+// Turns the modem's receive reports into one DATA transmission per packet.
+//
+// The problem: a packet reaches the host as several sentences (spec §5.6,
+// §8): `$CARXP` when it is detected, `$CACYC` from a cycle-init or a PSK
+// header, one `$CARXD` per good frame or `$CAMSG,BAD_CRC` in its place, and
+// last `$CACST`. Rate 0 gives two `$CACST` (cycle-init, then data) and a
+// PSK poller sees a second `$CACYC` (§10 quirk 7).
+// The decision: a record opens on `$CARXP` (or the first sentence of a
+// packet without one), collects frames in frame order, and closes on
+// `$CACST`; a record with at least one non-empty good frame is delivered,
+// others (cycle-inits, ACK mini-packets, timeouts) only close. A new
+// `$CARXP` closes an unfinished record (CST=0 or a lost `$CACST`) the same
+// way. DATA for every destination is delivered (driver.h: the queues
+// filter); empty frames are skipped (blank frames, §5.3) and bad frames
+// counted. `time` is the host's clock at delivery (the modem's clock may be
+// unset, §10 quirk 14); the statistics travel along as link figures.
+//
+// Core thread only.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "acomms/v1/modem_transmission.pb.h"
+#include "micromodem/nmea/cycle_sentences.h"
+#include "micromodem/nmea/receive_sentences.h"
+#include "micromodem/nmea/statistics_sentences.h"
+
+namespace acomms::drivers::micromodem {
+
+// "snr_in_db=12.5 snr_out_db=9.1 ..." from a $CACST, for link_quality.
+std::string describe_link_quality(const ::acomms::micromodem::ReceiveStatistics& statistics);
+// The $CACST fields as ReceptionFigures (PSK-only fields only for PSK packets).
+v1::ReceptionFigures figures_of(const ::acomms::micromodem::ReceiveStatistics& statistics);
+
+class Reception {
+ public:
+  struct Counters {
+    uint64_t packets = 0;         // records closed by $CACST
+    uint64_t data_delivered = 0;  // DATA transmissions delivered
+    uint64_t frames = 0;          // good non-empty frames delivered
+    uint64_t bad_frames = 0;      // $CAMSG,BAD_CRC
+    uint64_t packet_timeouts = 0; // $CAMSG,PACKET_TIMEOUT
+  };
+  using Deliver = std::function<void(v1::ModemTransmission)>;
+
+  Reception(std::function<double()> now_seconds, Deliver deliver);
+
+  void on_receive_started();                                          // $CARXP
+  void on_cycle(const ::acomms::micromodem::Cycle& cycle);            // $CACYC from the water
+  void on_data(const ::acomms::micromodem::ReceivedData& frame);      // $CARXD
+  void on_message(const ::acomms::micromodem::TransactionMessage& m); // $CAMSG
+  void on_statistics(const ::acomms::micromodem::ReceiveStatistics& statistics);  // $CACST
+  // Drops the record in progress (a reboot).
+  void reset() { record_.reset(); }
+
+  const Counters& counters() const { return counters_; }
+
+ private:
+  struct Record {
+    std::optional<::acomms::micromodem::Cycle> cycle;
+    std::optional<::acomms::micromodem::ReceivedData> first_frame;
+    std::vector<std::string> frames;  // good, non-empty, in frame order
+    bool ack_requested = false;
+  };
+  Record& open();
+  void close(const ::acomms::micromodem::ReceiveStatistics* statistics);
+
+  std::function<double()> now_seconds_;
+  Deliver deliver_;
+  std::optional<Record> record_;
+  Counters counters_;
+};
+
+}  // namespace acomms::drivers::micromodem
