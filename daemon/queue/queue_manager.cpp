@@ -101,6 +101,9 @@ void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMess
   event.detail = detail;
   event.removes_message = removes;
   event.encoded = encoded;
+  // Numbered here, on the core thread, so numbers follow the order messages
+  // are passed on; the journal makes each durable with its event.
+  if (kind == QueueEventKind::kReceived) event.seq = ++last_received_seq_;
   // Losses are worth an operator's attention; the rest is routine.
   auto level = (kind == QueueEventKind::kDropped || kind == QueueEventKind::kExpired)
                    ? spdlog::level::warn
@@ -116,6 +119,7 @@ void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMess
 void QueueManager::restore() {
   double now = clock_.now_seconds();
   size_t restored = 0;
+  last_received_seq_ = journal_.last_received_seq();
   for (JournalMessage& record : journal_.load()) {
     auto it = by_name_.find(record.type);
     QueuedMessage message;

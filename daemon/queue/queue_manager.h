@@ -46,6 +46,7 @@ struct ReceivedMessage {
   std::string type;
   std::unique_ptr<google::protobuf::Message> message;
   std::string encoded;  // its DCCL bytes, as received
+  int64_t seq = 0;      // its received sequence number (QueueEvent::seq)
   int32_t src = -1;   // from the source role, else the transmission's source
   int32_t dest = 0;
   double time = 0;    // when it was received
@@ -117,6 +118,12 @@ class QueueManager {
   uint64_t malformed_frames() const { return malformed_frames_; }
   // Received messages recognised as retransmissions and not passed on.
   uint64_t duplicates() const { return duplicates_; }
+  // The longest the duplicate filter looks back (seconds): received events
+  // this recent are read back at start, so the event log must keep them.
+  double duplicate_window_s() const { return duplicate_filter_.window_s(); }
+  // The received sequence number given to the last message received (0:
+  // none yet); continues across restarts from the journal.
+  int64_t last_received_seq() const { return last_received_seq_; }
 
  private:
   // The steps of a submit, run in order on their threads by
@@ -177,6 +184,7 @@ class QueueManager {
   uint64_t malformed_frames_ = 0;
   DuplicateFilter duplicate_filter_;
   uint64_t duplicates_ = 0;
+  int64_t last_received_seq_ = 0;
 };
 
 }  // namespace acomms::queue
