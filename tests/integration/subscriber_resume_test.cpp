@@ -16,6 +16,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -23,6 +24,10 @@
 #include <thread>
 
 #include "daemon_harness.h"
+#include "queue/event_log_retention.h"
+#include "queue/sqlite_journal.h"
+#include "store/group_commit_writer.h"
+#include "store/store.h"
 
 namespace acomms::testing {
 namespace {
@@ -213,6 +218,78 @@ TEST_F(SubscriberResume, KilledSubscriberThenKilledDaemonMissNothingAndRepeatNot
     EXPECT_TRUE(counters.insert(status_counter_of(printed[i])).second) << "printed twice: " << printed[i];
   }
   EXPECT_GT(first_last, 0);
+}
+
+// A replay that asks for pruned history is refused, naming the first seq
+// still held; one that starts at or after it is served. The store is
+// prepared and pruned (one real pruning step) before acommsd opens it.
+TEST(SubscribeReplay, PrunedHistoryIsOutOfRangeNamingTheFirstSeqStillHeld) {
+  const fs::path dir = fs::path("/tmp") / ("acomms-replay-range-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const double now = static_cast<double>(std::time(nullptr));
+  {
+    store::Store store((dir / "data").string());
+    store::GroupCommitWriter writer(store.db());
+    queue::SqliteJournal journal(writer);
+    for (int64_t seq = 1; seq <= 6; ++seq) {
+      queue::QueueEvent e;
+      e.kind = queue::QueueEventKind::kReceived;
+      e.time = seq <= 5 ? now - 100 * 86400.0 : now;  // 1..5 long past the bound
+      e.type = "example.Status";
+      e.src = 2;
+      e.dest = 1;
+      e.encoded = "not dccl";
+      e.seq = seq;
+      journal.record(e);
+    }
+    queue::RetentionPolicy policy;
+    policy.max_age_s = 90 * 86400.0;
+    policy.max_bytes = 0;
+    size_t pruned = writer
+                        .submit([&](store::Database& db) {
+                          return queue::prune_event_log_step(db, policy, now, now - 300);
+                        })
+                        .get();
+    ASSERT_EQ(pruned, 5u);
+  }
+  const std::string socket = (dir / "d.sock").string();
+  {
+    std::ofstream config(dir / "d.conf");
+    config << "data_dir: \"" << (dir / "data").string() << "\"\n"
+           << "grpc { unix_socket: \"" << socket << "\" }\n"
+           << "dccl { proto_files: \"" << ACOMMS_SOURCE_DIR << "/examples/messages.proto\" }\n"
+           << "driver { name: \"sim\" modem_id: 1 sim { listen: \"127.0.0.1:" << free_udp_port() << "\" } }\n";
+  }
+  ChildProcess daemon(ACOMMSD_BINARY, {"--config", (dir / "d.conf").string()}, (dir / "d").string());
+  ASSERT_TRUE(wait_serving(daemon, socket)) << daemon.stderr_text();
+  auto stub = api(socket);
+  {
+    grpc::ClientContext context;
+    v1::SubscribeRequest request;
+    request.set_after(2);
+    auto reader = stub->Subscribe(&context, request);
+    v1::ReceivedMessage message;
+    EXPECT_FALSE(reader->Read(&message));
+    grpc::Status status = reader->Finish();
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::OUT_OF_RANGE);
+    EXPECT_NE(status.error_message().find("first still held is 6"), std::string::npos) << status.error_message();
+  }
+  {
+    grpc::ClientContext context;
+    context.set_deadline(std::chrono::system_clock::now() + 10s);
+    v1::SubscribeRequest request;
+    request.set_after(5);  // had everything up to the pruned part
+    auto reader = stub->Subscribe(&context, request);
+    v1::ReceivedMessage message;
+    ASSERT_TRUE(reader->Read(&message));
+    EXPECT_EQ(message.seq(), 6);
+    EXPECT_EQ(message.type(), "example.Status");
+    context.TryCancel();
+    reader->Finish();
+  }
+  daemon.signal(SIGTERM);
+  EXPECT_EQ(daemon.wait(15s), std::optional<int>(0)) << daemon.stderr_text();
+  fs::remove_all(dir);
 }
 
 }  // namespace
