@@ -1,7 +1,8 @@
 #pragma once
-// Reads the event log (what happened to messages) for the Events API, on
-// its own read-only connection: WAL lets it read while the group-commit
-// writer appends, so a query never delays a Submit.
+// Reads the event log (what happened to messages) for the Events API, and
+// the received messages Subscribe replays after a seq, on its own read-only
+// connection: WAL lets it read while the group-commit writer appends, so a
+// query never delays a Submit.
 
 #include <cstdint>
 #include <mutex>
