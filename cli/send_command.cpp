@@ -121,7 +121,9 @@ void add_send_command(CLI::App& app, const GlobalOptions& global) {
   send->add_flag("-i,--interactive", options.interactive,
                  "Ask for each field on stdin, showing its type, DCCL bounds and enum values; confirm "
                  "before sending (works with a pipe too)");
-  send->add_option("--ttl", options.ttl_s, "Seconds this message may wait before it expires (default: the queue's)")
+  send->add_option("--ttl", options.ttl_s,
+                   "Seconds this message may wait before it expires (default: the queue's; at most its "
+                   "duplicate window)")
       ->check(CLI::NonNegativeNumber)
       ->type_name("SECONDS");
   send->footer(

@@ -25,6 +25,8 @@ std::string DuplicateFilter::key_of(int32_t src, std::string_view encoded) {
 
 void DuplicateFilter::insert(std::string key, double time) {
   if (order_.size() >= capacity_) {
+    // Still inside its window (the caller pruned the expired ones first).
+    if (order_.front().time >= time - window_s_) ++forgotten_early_;
     keys_.erase(order_.front().key);
     order_.pop_front();
   }

@@ -8,8 +8,15 @@
 // is taken as a retransmission and not delivered again. Messages that are
 // meant to repeat identical content within the window must differ in some
 // field (most carry a time), or the window must be shortened (0 turns the
-// filter off). The filter itself lives in memory; the QueueManager fills it
-// again at start-up from the received events in the event log.
+// filter off). The filter itself lives in memory; the QueueManager keeps
+// one per type, with the type's window (queue_manager.h: at least as long
+// as the type's ttl, so that a sender's last resend still falls inside it),
+// and fills it again at start-up from the received events in the event log.
+//
+// Memory is bounded by a capacity: past it the oldest entry is forgotten,
+// even one still inside its window. Such early forgetting is counted
+// (forgotten_early), because a resend of that message would then be passed
+// on again; the QueueManager logs it.
 
 #include <cstdint>
 #include <deque>
@@ -23,7 +30,8 @@ class DuplicateFilter {
  public:
   // Remembers at most `capacity` messages (oldest forgotten first), so a
   // flood cannot grow memory without bound.
-  explicit DuplicateFilter(double window_s, size_t capacity = 4096)
+  static constexpr size_t kDefaultCapacity = 16384;
+  explicit DuplicateFilter(double window_s, size_t capacity = kDefaultCapacity)
       : window_s_(window_s), capacity_(capacity) {}
 
   // True if (src, encoded) was seen within the window; otherwise remembers
@@ -36,6 +44,9 @@ class DuplicateFilter {
   void remember(int32_t src, std::string_view encoded, double time);
 
   double window_s() const { return window_s_; }
+  size_t capacity() const { return capacity_; }
+  // Entries forgotten for want of room while still inside their window.
+  uint64_t forgotten_early() const { return forgotten_early_; }
 
  private:
   struct Entry {
@@ -50,6 +61,7 @@ class DuplicateFilter {
   size_t capacity_;
   std::deque<Entry> order_;  // by arrival time
   std::unordered_set<std::string> keys_;
+  uint64_t forgotten_early_ = 0;
 };
 
 }  // namespace acomms::queue

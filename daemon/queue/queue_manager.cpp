@@ -7,6 +7,7 @@
 #include <google/protobuf/descriptor.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -42,9 +43,13 @@ QueueManager::QueueManager(const dccl::Codec& codec, const v1::QueueConfig& conf
       // Frame ids only need to be unique; starting from the clock keeps them
       // unique across restarts too, so the event log never reuses one.
       next_frame_id_(static_cast<uint64_t>(clock.now_seconds() * 1e6)),
-      duplicate_filter_(config.has_duplicate_window_s() ? config.duplicate_window_s() : 300) {
+      duplicate_window_s_(config.has_duplicate_window_s() ? config.duplicate_window_s() : 300),
+      clock_skew_s_(config.has_clock_skew_s() ? config.clock_skew_s() : 60) {
   if (!(config.duplicate_window_s() >= 0) || !std::isfinite(config.duplicate_window_s())) {
     throw std::invalid_argument("queue.duplicate_window_s must be 0 (off) or a positive number of seconds");
+  }
+  if (!(clock_skew_s_ >= 0) || !std::isfinite(clock_skew_s_)) {
+    throw std::invalid_argument("queue.clock_skew_s must be 0 or a positive number of seconds");
   }
   std::set<std::string> configured;
   for (const auto& entry : config.type()) {
@@ -71,6 +76,11 @@ std::vector<std::string> QueueManager::add_types() {
     TypeState& state = by_id_.try_emplace(info->id).first->second;
     state.queue = std::make_unique<Queue>(info->name, info->id, policy, now);
     state.roles = std::move(roles);
+    if (duplicate_window_s_ > 0) {
+      // Never shorter than the ttl: the sender resends until then.
+      state.window_s = std::max(duplicate_window_s_, policy.ttl_s);
+      state.filter.emplace(state.window_s + (state.roles.has_timestamp() ? 2 * clock_skew_s_ : 0));
+    }
     by_name_[info->name] = &state;
     added.push_back(info->name);
   }
@@ -164,13 +174,35 @@ void QueueManager::restore() {
 
   // A sender whose ACK was lost while this node was down sends again; what
   // was passed on before the restart must still count as seen.
-  if (duplicate_filter_.window_s() > 0) {
-    std::vector<QueueEvent> received = journal_.received_since(now - duplicate_filter_.window_s());
-    for (const QueueEvent& event : received) duplicate_filter_.remember(event.src, event.encoded, event.time);
+  const double longest = duplicate_window_s();
+  if (longest > 0) {
+    size_t remembered = 0;
+    for (const QueueEvent& event : journal_.received_since(now - longest)) {
+      auto it = by_name_.find(event.type);
+      if (it == by_name_.end() || !it->second->filter) continue;
+      DuplicateFilter& filter = *it->second->filter;
+      if (event.time < now - filter.window_s()) continue;
+      filter.remember(event.src, event.encoded, event.time);
+      ++remembered;
+    }
     spdlog::info("queue: {} message{} received in the last {} s remembered, so that retransmissions of them "
-                 "are not passed on again", received.size(), received.size() == 1 ? "" : "s",
-                 duplicate_filter_.window_s());
+                 "are not passed on again", remembered, remembered == 1 ? "" : "s", longest);
   }
+}
+
+double QueueManager::duplicate_window_s() const {
+  ACOMMS_ASSERT_CORE_THREAD();
+  double longest = 0;
+  for (const auto& [id, state] : by_id_) {
+    if (state.filter) longest = std::max(longest, state.filter->window_s());
+  }
+  return longest;
+}
+
+double QueueManager::duplicate_window(const std::string& type) const {
+  auto it = by_name_.find(type);
+  if (it == by_name_.end()) throw UnknownTypeError("no queue for type " + type);
+  return it->second->window_s;
 }
 
 void QueueManager::journal_new(const pb::Message& message, double ttl_s, Journaled journaled) const {
@@ -189,6 +221,14 @@ QueuedMessage QueueManager::prepare_new(const pb::Message& message, double ttl_s
                                                   : "no DCCL type " + type + " is loaded");
   }
   const TypeState& state = *it->second;
+  // A resend after the receiver's window would be delivered again.
+  if (state.window_s > 0 && ttl_s > state.window_s) {
+    throw TtlTooLongError(fmt::format(
+        "{}: ttl_s {} is longer than the queue's duplicate window of {} s (the longer of its ttl_s and "
+        "queue.duplicate_window_s): a resend after that could be delivered twice; give at most {} or raise "
+        "the type's ttl_s on every node",
+        type, ttl_s, state.window_s, state.window_s));
+  }
   // Checked before anything is written, so that a refused Submit leaves no
   // trace in the store. Submits already being stored when the queue fills
   // are refused by accept() instead, after the fact.

@@ -14,6 +14,18 @@
 // them back at start-up and holds the steps of a submit, expiry, Cancel and
 // Flush; frame_building.cpp the contest, build_frames and on_ack;
 // frame_receiving.cpp receive (unstitch, decode, filter).
+//
+// Delivered at most once, for as long as the sender may resend: an
+// acknowledged message whose ACK is lost (or whose sender restarts before
+// the ACK is in) is sent again until it is acked or its ttl passes. Each
+// type therefore remembers what it received for its window, W = the longer
+// of queue.duplicate_window_s and the type's ttl_s, and a Submit ttl_s
+// longer than W is refused, so a resend always falls inside the window of a
+// receiver with the same queue config. Types with a timestamp role also
+// refuse as stale a message stamped more than W + clock_skew_s ago (a
+// sender whose ttl is longer than ours, or a message the filter had to
+// forget), and remember for W + 2 * clock_skew_s so that the two rules
+// meet: a resend the filter no longer holds is older than the stale bound.
 
 #include <google/protobuf/message.h>
 
@@ -62,6 +74,13 @@ class UnknownTypeError : public std::invalid_argument {
 class QueueFullError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// Submit failed because its ttl_s is longer than the type's duplicate
+// window: a resend after the window would be delivered again.
+class TtlTooLongError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
 };
 
 // "queue T is full (max_queue N) and refuses new messages".
@@ -118,9 +137,16 @@ class QueueManager {
   uint64_t malformed_frames() const { return malformed_frames_; }
   // Received messages recognised as retransmissions and not passed on.
   uint64_t duplicates() const { return duplicates_; }
-  // The longest the duplicate filter looks back (seconds): received events
-  // this recent are read back at start, so the event log must keep them.
-  double duplicate_window_s() const { return duplicate_filter_.window_s(); }
+  // Received messages refused as stale: stamped longer ago than their
+  // type's window (plus the clock skew allowed).
+  uint64_t stale_refused() const { return stale_refused_; }
+  // The type's duplicate window W in seconds (0: off); Submit refuses a
+  // ttl_s above it. Throws UnknownTypeError.
+  double duplicate_window(const std::string& type) const;
+  // The longest any type's duplicate filter looks back (seconds; 0: none
+  // does): received events this recent are read back at start, so the
+  // event log must keep them. Core thread only (queues come and go).
+  double duplicate_window_s() const;
   // The received sequence number given to the last message received (0:
   // none yet); continues across restarts from the journal.
   int64_t last_received_seq() const { return last_received_seq_; }
@@ -154,7 +180,20 @@ class QueueManager {
     QueueStats stats;  // core thread
     // Counted by journal_new, on any thread.
     mutable std::atomic<uint64_t> refused{0};
+    // W (0: off), set when the queue is made; prepare_new reads it on any
+    // thread to bound a Submit's ttl.
+    double window_s = 0;
+    // The receive side (frame_receiving.cpp), core thread: the filter
+    // remembers for W, or W + 2 * clock skew when the type has a timestamp
+    // role.
+    std::optional<DuplicateFilter> filter;
+    uint64_t stale_in_burst = 0;      // stale refusals since the last fresh message
+    uint64_t forgotten_early_logged = 0;
   };
+
+  // The receive side's steps for one decoded message (frame_receiving.cpp).
+  bool refuse_if_stale(TypeState& state, const ReceivedMessage& received, double now);
+  bool drop_if_duplicate(TypeState& state, const ReceivedMessage& received, double now);
 
   // journal_new's checks and encoding: the message as it will be queued,
   // not yet journaled (id 0).
@@ -182,8 +221,10 @@ class QueueManager {
   std::unordered_map<uint64_t, std::vector<TypeState*>> in_flight_;
   uint64_t next_frame_id_;
   uint64_t malformed_frames_ = 0;
-  DuplicateFilter duplicate_filter_;
+  double duplicate_window_s_;  // queue.duplicate_window_s (0: off)
+  double clock_skew_s_;        // queue.clock_skew_s
   uint64_t duplicates_ = 0;
+  uint64_t stale_refused_ = 0;
   int64_t last_received_seq_ = 0;
 };
 

@@ -33,6 +33,8 @@ class MessageRoles {
   int32_t destination(const google::protobuf::Message& message) const;
   // Seconds since the Unix epoch, when the type has a set timestamp field.
   std::optional<double> timestamp(const google::protobuf::Message& message) const;
+  // Whether the type names a timestamp field at all.
+  bool has_timestamp() const { return !timestamp_.empty(); }
 
   // What a sender fills in before encoding: its own id as source and the
   // current time as timestamp, for role fields the client left unset.

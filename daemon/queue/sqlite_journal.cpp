@@ -1,5 +1,10 @@
 #include "queue/sqlite_journal.h"
 
+#include <spdlog/spdlog.h>
+
+#include <exception>
+#include <string>
+
 namespace acomms::queue {
 namespace {
 
@@ -74,7 +79,27 @@ void SqliteJournal::append(JournalMessage message, Appended appended) {
 }
 
 void SqliteJournal::record(const QueueEvent& event) {
-  writer_.post([this, event](Database&) { write_event(event); });
+  // The core has already acted on the event; if its commit fails there is
+  // nobody to answer, so the log must say what the store now lacks. For an
+  // event that removes a message, the store keeps the row the queue has
+  // forgotten: at the next start that message is queued (and sent) again.
+  writer_.post([this, event](Database&) { write_event(event); },
+               [kind = event.kind, type = event.type, id = event.message_id,
+                removes = event.removes_message](std::exception_ptr error) {
+                 if (!error) return;
+                 std::string why;
+                 try {
+                   std::rethrow_exception(error);
+                 } catch (const std::exception& e) {
+                   why = e.what();
+                 } catch (...) {
+                   why = "unknown failure";
+                 }
+                 spdlog::error("journal: {} event of {} message {} not logged: {}{}", to_string(kind), type, id, why,
+                               removes && id != 0 ? "; the store still holds the message, which will be queued "
+                                                    "again at the next start"
+                                                  : "");
+               });
 }
 
 // On the writer thread, inside the request's savepoint.

@@ -8,6 +8,7 @@
 
 #include "core/core_thread.h"
 #include "dccl/error.h"
+#include "store/store_error.h"
 
 namespace acomms::queue {
 namespace {
@@ -16,14 +17,22 @@ using Error = SubmitResult::Error;
 
 SubmitResult refused(Error error, std::string text) { return {error, 0, std::move(text)}; }
 
-// The text of a store failure, as the caller will read it.
-std::string store_failure(const std::exception_ptr& error) {
+// A store failure, as the caller will read it: the store's text names the
+// file; a full disk is told apart, since an operator can free space.
+SubmitResult store_failure(const std::exception_ptr& error) {
   try {
     std::rethrow_exception(error);
+  } catch (const store::StoreError& e) {
+    if (e.disk_full()) {
+      return refused(Error::kStoreFull, std::string("store: ") + e.what() +
+                                            " (the disk holding the store is full: free space on it, "
+                                            "then submit again)");
+    }
+    return refused(Error::kStoreUnavailable, std::string("store: ") + e.what());
   } catch (const std::exception& e) {
-    return std::string("store: ") + e.what();
+    return refused(Error::kStoreUnavailable, std::string("store: ") + e.what());
   } catch (...) {
-    return "store: unknown failure";
+    return refused(Error::kStoreUnavailable, "store: unknown failure");
   }
 }
 
@@ -35,11 +44,13 @@ SubmitResult refusal_of(const std::exception_ptr& error) {
     return refused(Error::kUnknownType, e.what());
   } catch (const QueueFullError& e) {
     return refused(Error::kQueueFull, e.what());
+  } catch (const TtlTooLongError& e) {
+    return refused(Error::kInvalidMessage, e.what());
   } catch (const dccl::Error& e) {
     return refused(Error::kInvalidMessage, e.what());
   } catch (...) {
     // The journal refused the write outright: the store is stopping.
-    return refused(Error::kStoreUnavailable, store_failure(error));
+    return store_failure(error);
   }
 }
 
@@ -66,7 +77,7 @@ void Submitter::submit(const google::protobuf::Message& message, double ttl_s, D
         completing->store(true);
         // On the store writer's thread: hand on quickly, never wait.
         if (error) {
-          (*answer)(refused(Error::kStoreUnavailable, store_failure(error)));
+          (*answer)(store_failure(error));
           return;
         }
         auto durable = std::make_shared<QueuedMessage>(std::move(queued));

@@ -47,6 +47,7 @@ struct SubmitResult {
     kQueueFull,         // the type's queue is full and refuses new messages
     kInvalidMessage,    // does not encode: names the field and the bound
     kStoreUnavailable,  // not stored: the store failed or is stopping
+    kStoreFull,         // not stored: the disk holding the store is full
   };
   Error error = Error::kNone;
   int64_t message_id = 0;  // the id clients see, when error is kNone

@@ -54,6 +54,7 @@ grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatu
     counters->set_messages_delivered(stats.messages_delivered);
     counters->set_duplicates_dropped(node_.queues.duplicates());
     counters->set_malformed_frames(node_.queues.malformed_frames());
+    counters->set_stale_refused(node_.queues.stale_refused());
     const link::DriverCounters lost = node_.link.driver.counters();
     counters->set_lost_half_duplex(lost.lost_half_duplex);
     counters->set_lost_collision(lost.lost_collision);

@@ -20,6 +20,7 @@ grpc::Status submit_status(const queue::SubmitResult& result) {
     case Error::kUnknownType: return {grpc::StatusCode::NOT_FOUND, result.text};
     case Error::kQueueFull: return {grpc::StatusCode::RESOURCE_EXHAUSTED, result.text};
     case Error::kInvalidMessage: return {grpc::StatusCode::INVALID_ARGUMENT, result.text};
+    case Error::kStoreFull: return {grpc::StatusCode::RESOURCE_EXHAUSTED, result.text};
     case Error::kStoreUnavailable: break;
   }
   return {grpc::StatusCode::UNAVAILABLE, result.text};

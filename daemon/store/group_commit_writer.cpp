@@ -20,6 +20,17 @@ std::string what(const std::exception_ptr& error) {
   }
 }
 
+// SQLite's result code behind a request's failure, 0 if it was not SQLite's.
+int code_of(const std::exception_ptr& error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const StoreError& e) {
+    return e.code();
+  } catch (...) {
+    return 0;
+  }
+}
+
 }  // namespace
 
 GroupCommitWriter::GroupCommitWriter(Database& db, Options options)
@@ -149,12 +160,26 @@ void GroupCommitWriter::run_batch(std::vector<Request>& requests) {
 }
 
 // Fails every request of the open transaction before `end` that has not
-// failed for a reason of its own: their changes are gone with it.
-void GroupCommitWriter::lose_transaction(Batch& batch, size_t end, const std::string& reason) {
+// failed for a reason of its own: their changes are gone with it. `code` is
+// SQLite's code for the cause, so that callers can tell a full disk.
+void GroupCommitWriter::lose_transaction(Batch& batch, size_t end, const std::string& reason, int code) {
   auto error = std::make_exception_ptr(StoreError(
-      "store " + db_.path() + ": " + reason + "; the write was not stored"));
+      "store " + db_.path() + ": " + reason + "; the write was not stored", code));
   for (size_t j = batch.first_in_transaction; j < end; ++j) {
     if (!batch.errors[j]) batch.errors[j] = error;
+  }
+}
+
+// Ends whatever transaction a failure left open. SQLite rolls back by itself
+// on most I/O errors; when it did not (a failed COMMIT that only met a lock,
+// a savepoint statement that failed), the connection must not carry the
+// broken transaction into the next batch: every BEGIN would fail after it.
+void GroupCommitWriter::roll_back() {
+  if (sqlite3_get_autocommit(db_.handle())) return;
+  int rc = sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
+  if (rc != SQLITE_OK) {
+    spdlog::error("store {}: rollback after a failed write failed too ({}); the next batch tries again",
+                  db_.path(), sqlite3_errstr(rc));
   }
 }
 
@@ -162,16 +187,20 @@ void GroupCommitWriter::lose_transaction(Batch& batch, size_t end, const std::st
 // opened, all of them fail and it returns false.
 bool GroupCommitWriter::begin(Batch& batch, size_t first) {
   batch.first_in_transaction = first;
+  // A transaction still open here was left by a failure whose rollback
+  // failed too: nothing of it was reported as stored, so end it now.
+  if (!sqlite3_get_autocommit(db_.handle())) {
+    spdlog::warn("store {}: a failed transaction was still open; rolling it back", db_.path());
+    roll_back();
+  }
   try {
     db_.exec("BEGIN IMMEDIATE");
     return true;
   } catch (const StoreError& e) {
     spdlog::error("store {}: cannot start a transaction for {} write(s): {}", db_.path(), batch.size() - first,
                   e.what());
-    if (!sqlite3_get_autocommit(db_.handle())) {
-      sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
-    }
-    lose_transaction(batch, batch.size(), std::string("cannot start a transaction: ") + e.what());
+    roll_back();
+    lose_transaction(batch, batch.size(), std::string("cannot start a transaction: ") + e.what(), e.code());
     return false;
   }
 }
@@ -185,8 +214,9 @@ bool GroupCommitWriter::prepare_savepoints(Batch& batch) {
     batch.rollback_to = &prepared("ROLLBACK TO request");
     return true;
   } catch (const StoreError& e) {
-    sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
-    lose_transaction(batch, batch.size(), std::string("cannot prepare savepoints: ") + e.what());
+    spdlog::error("store {}: cannot prepare savepoints: {}", db_.path(), e.what());
+    roll_back();
+    lose_transaction(batch, batch.size(), std::string("cannot prepare savepoints: ") + e.what(), e.code());
     return false;
   }
 }
@@ -206,8 +236,10 @@ void GroupCommitWriter::run_request(Batch& batch, size_t i) {
       // open and only this request's savepoint needs undoing. Some (I/O
       // error, disk full) make SQLite roll back the whole transaction.
       if (sqlite3_get_autocommit(db_.handle())) {
+        spdlog::error("store {}: a write failed and SQLite rolled back its transaction of {} write(s): {}",
+                      db_.path(), i + 1 - batch.first_in_transaction, what(batch.errors[i]));
         lose_transaction(batch, i, "the transaction was rolled back by a failure of a write in the "
-                                   "same batch (" + what(batch.errors[i]) + ")");
+                                   "same batch (" + what(batch.errors[i]) + ")", code_of(batch.errors[i]));
         batch.open = begin(batch, i + 1);
         return;
       }
@@ -221,8 +253,8 @@ void GroupCommitWriter::run_request(Batch& batch, size_t i) {
     // can be trusted any more.
     if (!batch.errors[i]) batch.errors[i] = std::current_exception();
     spdlog::error("store {}: savepoint failed: {}", db_.path(), e.what());
-    sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
-    lose_transaction(batch, i, std::string("savepoint failed: ") + e.what());
+    roll_back();
+    lose_transaction(batch, i, std::string("savepoint failed: ") + e.what(), e.code());
     batch.open = begin(batch, i + 1);
   }
 }
@@ -238,10 +270,8 @@ void GroupCommitWriter::commit(Batch& batch) {
                   batch.size() - batch.first_in_transaction, e.what());
     // A failed COMMIT may leave the transaction open (SQLITE_BUSY); end it
     // so that the next batch starts clean.
-    if (!sqlite3_get_autocommit(db_.handle())) {
-      sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
-    }
-    lose_transaction(batch, batch.size(), std::string("commit failed: ") + e.what());
+    roll_back();
+    lose_transaction(batch, batch.size(), std::string("commit failed: ") + e.what(), e.code());
   }
 }
 

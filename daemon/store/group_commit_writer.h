@@ -10,7 +10,11 @@
 //
 // Each request runs in its own SAVEPOINT inside the batch transaction: one
 // failing request rolls back only its own changes and only its own caller
-// sees the error. Requests run in the order they were queued (submit and post
+// sees the error. When the disk fails instead (a BEGIN, a write SQLite
+// answers by rolling the whole transaction back, the COMMIT), every request
+// of the lost transaction fails, none is reported stored, and the next
+// batch starts on a connection with no transaction open
+// (tests/unit/store/*_fault_test.cpp inject those faults). Requests run in the order they were queued (submit and post
 // share one FIFO), each seeing the effects of those before it.
 //
 // The connection was opened NOMUTEX: once a writer is started on it, only the
@@ -75,7 +79,9 @@ class GroupCommitWriter {
   // Runs `work` (callable as work(Database&), copyable: it is kept in a
   // std::function) on the writer thread; the future
   // becomes ready once its batch committed, with work's result, or with the
-  // exception work threw, or with StoreError when the batch failed to commit.
+  // exception work threw, or with StoreError when the batch failed to commit
+  // (naming the store; its code() is SQLite's for the cause, SQLITE_FULL
+  // when the disk is full).
   // Throws StoreError if the writer is stopped.
   template <typename F>
   auto submit(F&& work) -> std::future<std::invoke_result_t<F&, Database&>>;
@@ -129,7 +135,8 @@ class GroupCommitWriter {
   bool prepare_savepoints(Batch& batch);
   void run_request(Batch& batch, size_t i);
   void commit(Batch& batch);
-  void lose_transaction(Batch& batch, size_t end, const std::string& reason);
+  void lose_transaction(Batch& batch, size_t end, const std::string& reason, int code);
+  void roll_back();
   void record_stats(const Batch& batch);
   void answer(const Batch& batch);
 

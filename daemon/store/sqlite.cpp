@@ -2,14 +2,14 @@
 
 namespace acomms::store {
 
-Database::Database(const std::string& path, Mode mode) : path_(path) {
+Database::Database(const std::string& path, Mode mode, const std::string& vfs) : path_(path) {
   int flags = mode == Mode::kReadOnly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
-  int rc = sqlite3_open_v2(path.c_str(), &db_, flags | SQLITE_OPEN_NOMUTEX, nullptr);
+  int rc = sqlite3_open_v2(path.c_str(), &db_, flags | SQLITE_OPEN_NOMUTEX, vfs.empty() ? nullptr : vfs.c_str());
   if (rc != SQLITE_OK) {
     std::string reason = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
     sqlite3_close_v2(db_);
     db_ = nullptr;
-    throw StoreError("cannot open store " + path + ": " + reason);
+    throw StoreError("cannot open store " + path + ": " + reason, rc);
   }
   sqlite3_extended_result_codes(db_, 1);
   // Another process (acommsctl reading, a backup) may briefly hold the lock.
@@ -24,7 +24,7 @@ void Database::exec(std::string_view sql) {
   if (rc != SQLITE_OK) {
     std::string reason = error ? error : sqlite3_errstr(rc);
     sqlite3_free(error);
-    throw StoreError(path_ + ": " + reason);
+    throw StoreError(path_ + ": " + reason, rc);
   }
 }
 
@@ -32,10 +32,12 @@ Statement Database::prepare(std::string_view sql) { return Statement(*this, sql)
 
 std::string Database::last_error() const { return sqlite3_errmsg(db_); }
 
+int Database::last_error_code() const { return sqlite3_extended_errcode(db_); }
+
 Statement::Statement(Database& db, std::string_view sql) : db_(&db) {
   if (sqlite3_prepare_v2(db.handle(), sql.data(), static_cast<int>(sql.size()), &stmt_, nullptr) !=
       SQLITE_OK) {
-    throw StoreError(db.path() + ": " + db.last_error());
+    throw StoreError(db.path() + ": " + db.last_error(), db.last_error_code());
   }
 }
 
@@ -47,7 +49,7 @@ Statement::Statement(Statement&& other) noexcept : db_(other.db_), stmt_(other.s
 
 Statement& Statement::bind(int index, int64_t value) {
   if (sqlite3_bind_int64(stmt_, index, value) != SQLITE_OK) {
-    throw StoreError(db_->path() + ": " + db_->last_error());
+    throw StoreError(db_->path() + ": " + db_->last_error(), db_->last_error_code());
   }
   return *this;
 }
@@ -55,14 +57,14 @@ Statement& Statement::bind(int index, int64_t value) {
 Statement& Statement::bind(int index, std::string_view text) {
   if (sqlite3_bind_text(stmt_, index, text.data(), static_cast<int>(text.size()),
                         SQLITE_TRANSIENT) != SQLITE_OK) {
-    throw StoreError(db_->path() + ": " + db_->last_error());
+    throw StoreError(db_->path() + ": " + db_->last_error(), db_->last_error_code());
   }
   return *this;
 }
 
 Statement& Statement::bind_double(int index, double value) {
   if (sqlite3_bind_double(stmt_, index, value) != SQLITE_OK) {
-    throw StoreError(db_->path() + ": " + db_->last_error());
+    throw StoreError(db_->path() + ": " + db_->last_error(), db_->last_error_code());
   }
   return *this;
 }
@@ -73,14 +75,14 @@ Statement& Statement::bind_blob(int index, std::string_view bytes) {
                                               SQLITE_TRANSIENT)
                         : sqlite3_bind_zeroblob(stmt_, index, 0);
   if (rc != SQLITE_OK) {
-    throw StoreError(db_->path() + ": " + db_->last_error());
+    throw StoreError(db_->path() + ": " + db_->last_error(), db_->last_error_code());
   }
   return *this;
 }
 
 Statement& Statement::bind_null(int index) {
   if (sqlite3_bind_null(stmt_, index) != SQLITE_OK) {
-    throw StoreError(db_->path() + ": " + db_->last_error());
+    throw StoreError(db_->path() + ": " + db_->last_error(), db_->last_error_code());
   }
   return *this;
 }
@@ -89,7 +91,7 @@ bool Statement::step() {
   int rc = sqlite3_step(stmt_);
   if (rc == SQLITE_ROW) return true;
   if (rc == SQLITE_DONE) return false;
-  throw StoreError(db_->path() + ": " + db_->last_error());
+  throw StoreError(db_->path() + ": " + db_->last_error(), db_->last_error_code());
 }
 
 void Statement::reset() {

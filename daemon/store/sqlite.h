@@ -19,7 +19,11 @@ class Database {
   enum class Mode { kReadWrite, kReadOnly };
   // Opens the database file: read-write (creating it if missing), or
   // read-only (it must exist). Throws StoreError.
-  explicit Database(const std::string& path, Mode mode = Mode::kReadWrite);
+  explicit Database(const std::string& path, Mode mode = Mode::kReadWrite)
+      : Database(path, mode, std::string()) {}
+  // The same through the registered sqlite3_vfs named `vfs` (the default VFS
+  // when empty). For tests only: the fault-injecting VFS of tests/unit/store.
+  Database(const std::string& path, Mode mode, const std::string& vfs);
   ~Database();
   Database(const Database&) = delete;
   Database& operator=(const Database&) = delete;
@@ -32,6 +36,8 @@ class Database {
 
   // SQLite's message for the last failure on this connection.
   std::string last_error() const;
+  // SQLite's extended result code for it (StoreError::code()).
+  int last_error_code() const;
 
  private:
   std::string path_;

@@ -48,12 +48,12 @@ std::string single_text(Database& db, const char* sql) {
 
 }  // namespace
 
-Store::Store(const std::string& data_dir) : data_dir_(data_dir) {
+Store::Store(const std::string& data_dir, const Options& options) : data_dir_(data_dir) {
   make_data_dir(data_dir_);
   lock_fd_ = lock_data_dir(data_dir_);
   std::string path = data_dir_ + "/" + kStoreFileName;
   try {
-    db_ = std::make_unique<Database>(path);
+    db_ = std::make_unique<Database>(path, Database::Mode::kReadWrite, options.vfs);
     // SQLite quietly opens a write-protected file read-only; a daemon that
     // cannot write would only fail at the first Submit, so refuse now.
     if (sqlite3_db_readonly(db_->handle(), "main") == 1) {

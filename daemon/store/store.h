@@ -15,11 +15,18 @@ inline constexpr const char* kStoreFileName = "acommsd.db";
 
 class Store {
  public:
+  struct Options {
+    // The registered sqlite3_vfs to open the file through; empty for the
+    // default. For tests only (the fault-injecting VFS of tests/unit/store).
+    std::string vfs;
+  };
+
   // Creates the data dir if needed, opens and checks the database, applies
   // pending migrations. Throws StoreError with an actionable message when the
   // dir cannot be created or locked, or the file is unwritable, corrupt, or
   // from a newer schema.
-  explicit Store(const std::string& data_dir);
+  explicit Store(const std::string& data_dir) : Store(data_dir, Options()) {}
+  Store(const std::string& data_dir, const Options& options);
   // Checkpoints the WAL into the main file and closes.
   ~Store();
   Store(const Store&) = delete;

@@ -48,7 +48,12 @@ void check(const Codec& codec, const std::string& type, std::string_view bytes) 
   try {
     again = codec.encode(*decoded);
   } catch (const acomms::dccl::Error&) {
-    __builtin_trap();  // a decoded message is always within bounds
+    // A decoded message is always within bounds. But, as the reference
+    // does, an empty v2/v3 string or sub-message decodes as not set (README,
+    // "Matching the reference"): a required one is then missing, which only
+    // strict mode refuses. Anything else is a bug.
+    if (codec.strict() && !decoded->IsInitialized()) return;
+    __builtin_trap();
   }
   if (codec.encode(*codec.decode_as(type, again)) != again) __builtin_trap();
 }

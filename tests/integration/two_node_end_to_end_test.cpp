@@ -23,6 +23,7 @@
 #include <thread>
 
 #include "daemon_harness.h"
+#include "stream_subscriber.h"
 
 namespace acomms::testing {
 namespace {
@@ -33,53 +34,7 @@ using namespace std::chrono_literals;
 constexpr double kSlotSeconds = 3;
 constexpr double kCycleSeconds = 2 * kSlotSeconds;
 
-// Collects what one Subscribe stream delivers, on its own thread.
-class Subscriber {
- public:
-  Subscriber(const std::string& socket, const std::string& type) : stub_(api(socket)) {
-    v1::SubscribeRequest request;
-    request.add_types(type);
-    reader_ = stub_->Subscribe(&context_, request);
-    // The server sends headers once subscribed: nothing published after
-    // this can be missed.
-    reader_->WaitForInitialMetadata();
-    thread_ = std::thread([this] {
-      v1::ReceivedMessage message;
-      while (reader_->Read(&message)) {
-        std::lock_guard lock(mutex_);
-        received_.push_back(message);
-      }
-      end_ = reader_->Finish();
-    });
-  }
-  ~Subscriber() {
-    context_.TryCancel();
-    thread_.join();
-  }
-  std::vector<v1::ReceivedMessage> received() {
-    std::lock_guard lock(mutex_);
-    return received_;
-  }
-  // Waits until `done(received)` holds or `timeout` passes.
-  template <typename Done>
-  bool wait_for(Done done, std::chrono::seconds timeout) {
-    auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-      if (done(received())) return true;
-      std::this_thread::sleep_for(100ms);
-    }
-    return done(received());
-  }
-
- private:
-  std::unique_ptr<v1::Acomms::Stub> stub_;
-  grpc::ClientContext context_;
-  std::unique_ptr<grpc::ClientReader<v1::ReceivedMessage>> reader_;
-  std::thread thread_;
-  std::mutex mutex_;
-  std::vector<v1::ReceivedMessage> received_;
-  grpc::Status end_;
-};
+using Subscriber = StreamSubscriber;
 
 // The "seq" field of a received message's JSON.
 int seq_of(const v1::ReceivedMessage& message) {

@@ -220,7 +220,9 @@ TEST(SlotBudgetNetwork, AnswersToPollsCarryTheFramesThatFitInWhatIsLeftOfTheSlot
   ASSERT_GE(master.packets.size(), 2u);
   size_t index = 0;
   for (const auto& [time, frames] : master.packets) {
-    if (++index < master.packets.size()) EXPECT_EQ(frames, 3) << "packet " << index;
+    if (++index < master.packets.size()) {
+      EXPECT_EQ(frames, 3) << "packet " << index;
+    }
   }
   EXPECT_LE(master.packets.rbegin()->second, 3);
   for (Node* node : {&master, &polled}) {

@@ -75,6 +75,24 @@ TEST(DuplicateFilterTest, ManyDistinctMessagesStayWithinCapacity) {
   EXPECT_FALSE(filter.seen(1, "0", kT + 20));
 }
 
+TEST(DuplicateFilterTest, ForgettingForWantOfRoomInsideTheWindowIsCounted) {
+  DuplicateFilter filter(10, 2);
+  EXPECT_FALSE(filter.seen(1, "a", kT));
+  EXPECT_FALSE(filter.seen(1, "b", kT + 1));
+  EXPECT_FALSE(filter.seen(1, "c", kT + 2));  // "a" still inside its window
+  EXPECT_EQ(filter.forgotten_early(), 1u);
+  EXPECT_FALSE(filter.seen(1, "d", kT + 12.5));  // "b" and "c" expired first: room
+  EXPECT_FALSE(filter.seen(1, "e", kT + 12.6));
+  EXPECT_EQ(filter.forgotten_early(), 1u) << "an expired entry counted as forgotten early";
+}
+
+// README: "over eight messages a second for the default 1800 s ttl" (a
+// stamped type remembers for 1800 + 2 x 60 s).
+TEST(DuplicateFilterTest, DefaultCapacityHoldsEightMessagesASecondForTheDefaultTtl) {
+  DuplicateFilter filter(1800 + 2 * 60);
+  EXPECT_GE(filter.capacity(), 8u * (1800 + 2 * 60));
+}
+
 TEST(DuplicateFilterTest, WindowZeroTurnsItOff) {
   DuplicateFilter filter(0);
   for (int i = 0; i < 5; ++i) EXPECT_FALSE(filter.seen(4, "abc", kT));

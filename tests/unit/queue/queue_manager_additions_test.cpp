@@ -141,8 +141,9 @@ TEST_F(QueueAdditionsTest, SameBytesFromAnotherSourceAreNotDuplicates) {
   EXPECT_EQ(manager_->duplicates(), 1u);
 }
 
+// (The window is never shorter than the type's ttl: delivered_once_test.cpp.)
 TEST_F(QueueAdditionsTest, AfterTheConfiguredWindowTheSameFrameIsDeliveredAgain) {
-  make("duplicate_window_s: 10");
+  make("duplicate_window_s: 10 defaults { ttl_s: 5 }");
   std::string frame = encode("qa.Status", "dest: 1 value: 7");
   ASSERT_EQ(manager_->receive(frame, 4).size(), 1u);
   at(9);
@@ -152,8 +153,8 @@ TEST_F(QueueAdditionsTest, AfterTheConfiguredWindowTheSameFrameIsDeliveredAgain)
   EXPECT_EQ(manager_->duplicates(), 1u);
 }
 
-TEST_F(QueueAdditionsTest, DefaultWindowIsFiveMinutes) {
-  make();
+TEST_F(QueueAdditionsTest, DefaultWindowIsFiveMinutesForATypeWithAShorterTtl) {
+  make("defaults { ttl_s: 120 }");
   std::string frame = encode("qa.Status", "dest: 1 value: 7");
   ASSERT_EQ(manager_->receive(frame, 4).size(), 1u);
   at(299);
@@ -165,11 +166,11 @@ TEST_F(QueueAdditionsTest, DefaultWindowIsFiveMinutes) {
 // A command whose ACK was lost while this node restarted is sent again: the
 // restarted node must not pass it on a second time.
 TEST_F(QueueAdditionsTest, AfterARestartWhatWasReceivedWithinTheWindowIsStillADuplicate) {
-  make("duplicate_window_s: 60");
+  make("duplicate_window_s: 60 defaults { ttl_s: 60 }");
   std::string command = encode("qa.Command", "dest: 1 value: 8");
   ASSERT_EQ(manager_->receive(command, 4).size(), 1u);
   at(20);
-  make("duplicate_window_s: 60");  // the restarted process: same journal, empty memory
+  make("duplicate_window_s: 60 defaults { ttl_s: 60 }");  // the restarted process: same journal, empty memory
   manager_->restore();
   EXPECT_TRUE(manager_->receive(command, 4).empty()) << "the resent command was passed on twice";
   EXPECT_EQ(manager_->duplicates(), 1u);
