@@ -4,7 +4,10 @@
 
 #include <atomic>
 #include <ctime>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -21,6 +24,43 @@ struct SubOptions {
   std::vector<std::string> types;
   int32_t src = 0;
   CLI::Option* src_option = nullptr;
+  std::string resume_file;
+};
+
+// `sub --resume FILE`: the seq of the last message printed, kept in FILE so
+// that a reader started again (by cron, after a crash) goes on from there.
+// Written after the line is flushed, by rename, so FILE always holds one
+// whole number: a kill between the two repeats at most that one line, and
+// never loses one (a missed command is worse than a repeated line).
+class ResumeCursor {
+ public:
+  explicit ResumeCursor(std::string path) : path_(std::move(path)) {}
+
+  // The seq to resume after: 0 (everything still held) when FILE does not
+  // exist yet. Throws CLI::ValidationError naming FILE when it is not a number.
+  int64_t load() const {
+    std::ifstream in(path_);
+    if (!in) return 0;
+    int64_t seq = 0;
+    if (!(in >> seq) || seq < 0) {
+      throw CLI::ValidationError("--resume", path_ + " does not hold a sequence number (0 or more)");
+    }
+    return seq;
+  }
+
+  void save(int64_t seq) const {
+    const std::string temporary = path_ + ".tmp";
+    {
+      std::ofstream out(temporary, std::ios::trunc);
+      out << seq << '\n';
+      out.flush();
+      if (!out) throw std::runtime_error("cannot write " + temporary);
+    }
+    std::filesystem::rename(temporary, path_);
+  }
+
+ private:
+  std::string path_;
 };
 
 // SIGINT/SIGTERM end a subscription normally (exit 0). They are blocked
@@ -62,7 +102,8 @@ std::string line_for(const v1::ReceivedMessage& received) {
   const std::string& message = received.json().empty() ? std::string("null") : received.json();
   return "{\"type\":" + json_quote(received.type()) + ",\"src\":" + std::to_string(received.src()) +
          ",\"dest\":" + std::to_string(received.dest()) + ",\"receive_time\":" + number_text(received.receive_time()) +
-         ",\"message\":" + message + ",\"link\":" + to_json(received.link()) + "}";
+         ",\"message\":" + message + ",\"link\":" + to_json(received.link()) +
+         ",\"seq\":" + std::to_string(received.seq()) + "}";
 }
 
 void run_sub(const GlobalOptions& global, const SubOptions& options) {
@@ -74,11 +115,17 @@ void run_sub(const GlobalOptions& global, const SubOptions& options) {
   v1::SubscribeRequest request;
   for (const std::string& type : options.types) request.add_types(type);
   if (options.src_option->count() > 0) request.set_src(options.src);
+  std::optional<ResumeCursor> cursor;
+  if (!options.resume_file.empty()) {
+    cursor.emplace(options.resume_file);
+    request.set_after(cursor->load());
+  }
   std::unique_ptr<grpc::ClientReader<v1::ReceivedMessage>> reader = client.stub().Subscribe(&context, request);
   v1::ReceivedMessage received;
   while (reader->Read(&received)) {
     // A pipe to another program is read line by line as messages arrive.
     std::cout << line_for(received) << std::endl;
+    if (cursor) cursor->save(received.seq());
   }
   grpc::Status status = reader->Finish();
   if (stop.stopped()) return;
@@ -92,13 +139,19 @@ void add_sub_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* sub = app.add_subcommand("sub", "Follow messages received from the link, one JSON line each");
   sub->add_option("TYPE", options.types, "Only these types (default: every type)")->type_name("");
   options.src_option = sub->add_option("--src", options.src, "Only messages from this modem id")->type_name("ID");
+  sub->add_option("--resume", options.resume_file,
+                  "Keep the last message's seq in FILE and start after it: nothing received meanwhile is "
+                  "missed (a missing FILE starts from the oldest message the daemon still holds)")
+      ->type_name("FILE");
   sub->footer(
-      "Each line: type, src, dest, receive_time, message (the decoded fields, as JSON) and link (who "
-      "transmitted, rate, quality). Runs until Ctrl-C (exit 0); exits 1 if the daemon ends the stream "
+      "Each line: type, src, dest, receive_time, message (the decoded fields, as JSON), link (who "
+      "transmitted, rate, quality; absent on messages replayed from the store) and seq (this node's "
+      "received sequence number). Runs until Ctrl-C (exit 0); exits 1 if the daemon ends the stream "
       "(it is stopping, or this reader fell too far behind and was dropped).\n\n"
       "Examples:\n"
       "  acommsctl sub\n"
-      "  acommsctl sub gv.NavigationReport --src 2 | jq .message");
+      "  acommsctl sub gv.NavigationReport --src 2 | jq .message\n"
+      "  acommsctl sub --resume ~/.acomms-sub.cursor >> received.jsonl");
   sub->callback([&global] { run_sub(global, options); });
 }
 

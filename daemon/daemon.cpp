@@ -25,6 +25,17 @@ Daemon::Daemon(const v1::Config& config) : config_(config) {
   }
 }
 
+namespace {
+
+queue::RetentionPolicy retention_policy(const v1::StoreConfig& store) {
+  queue::RetentionPolicy policy;
+  if (store.has_event_retention_days()) policy.max_age_s = store.event_retention_days() * 86400.0;
+  if (store.has_event_retention_mb()) policy.max_bytes = static_cast<int64_t>(store.event_retention_mb() * (1 << 20));
+  return policy;
+}
+
+}  // namespace
+
 void Daemon::start() {
   store_ = std::make_unique<store::Store>(config_.data_dir());
   std::vector<service::RecordedDefinition> api_definitions =
@@ -51,9 +62,15 @@ void Daemon::start() {
       *queues_, [core = core_.get()](std::function<void()> work) { core->post(std::move(work)); });
   expiry_timer_ = std::make_unique<asio::steady_timer>(core_->context());
   build_link();
+  retention_ = std::make_unique<queue::EventLogRetention>(
+      *writer_, *scheduler_, retention_policy(config_.store()), [queues = queues_.get()](double now) {
+        // What the duplicate filter reads back at the next start stays.
+        return now - queues->duplicate_window_s();
+      });
   core_->start();
   core_->call([this] {
     schedule_expiry();
+    retention_->start();
     link_->start();  // the supervisor retries a driver that fails to start
   });
 
@@ -122,7 +139,20 @@ void Daemon::build_link() {
   link_ = std::make_unique<link::LinkController>(
       own_id, *queues_, *mac_, *driver_, [this](queue::ReceivedMessage message, const v1::ModemTransmission& from) {
         spdlog::debug("received {} from {} (transmission from {})", message.type, message.src, from.src());
-        subscribers_.publish(service::to_received_message(message, from));
+        // Published only once its event (and so its seq) is committed: a
+        // subscriber must never hold a number that a crash could hand out
+        // again, and a replay must find every message published before it
+        // (service/subscribe_rpc.cpp relies on this). Commits complete in
+        // order, so messages are published in seq order, from the store
+        // writer's thread.
+        auto received = std::make_shared<const v1::ReceivedMessage>(service::to_received_message(message, from));
+        journal_->when_committed([this, received](std::exception_ptr error) {
+          if (error) {
+            spdlog::error("received message {} (seq {}) was not stored; passed on anyway", received->type(),
+                          received->seq());
+          }
+          subscribers_.publish(*received);
+        });
       },
       link::LinkOptions::from_config(config_.mac(), scheduler_->clock()));
   // A serial modem's sentences, kept for debugging (link/raw_log.h). The
@@ -153,6 +183,7 @@ void Daemon::stop() {
   // the air after the operator asked the daemon to stop. Calls still in
   // flight meanwhile are journaled and go out after the next start.
   if (core_ && link_) core_->call([this] { link_->stop(); });
+  if (core_ && retention_) core_->call([this] { retention_->stop(); });
   // Subscribe streams would otherwise hold the server's shutdown up.
   subscribers_.close();
   if (server_) server_->shutdown(std::chrono::seconds(2));
@@ -178,6 +209,7 @@ void Daemon::stop() {
   }
   journal_.reset();
   writer_.reset();
+  retention_.reset();  // after the writer: a step in flight refers to it
   codec_.reset();
   events_.reset();
   store_.reset();

@@ -20,6 +20,7 @@
 #include "dccl/codec.h"
 #include "queue/queue_manager.h"
 #include "queue/event_log_reader.h"
+#include "queue/event_log_retention.h"
 #include "queue/sqlite_journal.h"
 #include "queue/submitter.h"
 #include "store/group_commit_writer.h"
@@ -75,6 +76,8 @@ class Daemon {
   std::unique_ptr<link::DriverSupervisor> driver_;
   std::unique_ptr<mac::Mac> mac_;
   std::unique_ptr<link::LinkController> link_;
+  // Prunes the event log on the core thread's schedule, on the writer.
+  std::unique_ptr<queue::EventLogRetention> retention_;
   std::unique_ptr<service::AcommsService> api_;
   std::unique_ptr<service::GrpcServer> server_;
 };

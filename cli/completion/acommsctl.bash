@@ -81,13 +81,14 @@ _acommsctl() {
       if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --json --interactive -i --ttl --socket -s --timeout --ca --cert --key --insecure" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
     "sub")
       case "$prev" in
+        --resume) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --src|--timeout) COMPREPLY=(); return ;;
       esac
-      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --src --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
+      if [[ "$cur" == -* ]]; then COMPREPLY=($(compgen -W "--help -h --src --resume --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")); else COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); fi ;;
     "queue")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;

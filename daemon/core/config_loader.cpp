@@ -175,6 +175,12 @@ void validate(const v1::Config& config, const pb::TextFormat::ParseInfoTree& tre
     throw ConfigError(file_name, where.line, where.column, dotted, problem);
   };
   validate_tcp(config.grpc(), fail);
+  if (config.store().event_retention_days() < 0) {
+    fail({"store", "event_retention_days"}, "must be 0 (no age bound) or more");
+  }
+  if (config.store().event_retention_mb() < 0) {
+    fail({"store", "event_retention_mb"}, "must be 0 (no size bound) or more");
+  }
   if (config.grpc().unix_socket().size() >= sizeof(sockaddr_un::sun_path)) {
     fail({"grpc", "unix_socket"},
          "path is " + std::to_string(config.grpc().unix_socket().size()) +

@@ -77,4 +77,51 @@ EventPage EventLogReader::query(const EventQuery& query) {
   return page;
 }
 
+std::vector<StoredReceived> EventLogReader::received_after(int64_t after, const std::vector<std::string>& types,
+                                                           std::optional<int32_t> src, size_t limit) {
+  std::string sql =
+      "SELECT seq, time, type, src, dest, encoded FROM event_log "
+      "WHERE seq > ? AND kind = 'received' AND encoded IS NOT NULL";
+  if (!types.empty()) sql += " AND type IN (" + placeholders(types.size()) + ")";
+  if (src) sql += " AND src = ?";
+  sql += " ORDER BY seq LIMIT ?";  // event_log_by_seq: no sort
+
+  std::lock_guard lock(mutex_);
+  store::Statement statement = db_.prepare(sql);
+  int index = 1;
+  statement.bind(index++, after);
+  for (const std::string& type : types) statement.bind(index++, std::string_view(type));
+  if (src) statement.bind(index++, int64_t{*src});
+  statement.bind(index++, static_cast<int64_t>(limit));
+  std::vector<StoredReceived> out;
+  while (statement.step()) {
+    StoredReceived& r = out.emplace_back();
+    r.seq = statement.column_int64(0);
+    r.time = statement.column_double(1);
+    r.type = statement.column_text(2);
+    r.src = statement.is_null(3) ? -1 : static_cast<int32_t>(statement.column_int64(3));
+    r.dest = statement.is_null(4) ? -1 : static_cast<int32_t>(statement.column_int64(4));
+    r.encoded = statement.column_blob(5);
+  }
+  return out;
+}
+
+ReceivedRange EventLogReader::received_range() {
+  std::lock_guard lock(mutex_);
+  ReceivedRange range;
+  // One read transaction, so that first and last agree with each other.
+  db_.exec("BEGIN");
+  try {
+    store::Statement last = db_.prepare("SELECT last FROM event_sequence WHERE name = 'received'");
+    if (last.step()) range.last = last.column_int64(0);
+    store::Statement first = db_.prepare("SELECT MIN(seq) FROM event_log WHERE seq IS NOT NULL");
+    range.first = (first.step() && !first.is_null(0)) ? first.column_int64(0) : range.last + 1;
+  } catch (...) {
+    db_.exec("ROLLBACK");
+    throw;
+  }
+  db_.exec("COMMIT");
+  return range;
+}
+
 }  // namespace acomms::queue

@@ -1,10 +1,12 @@
 #pragma once
-// Reads the event log (what happened to messages) for the Events API, on
-// its own read-only connection: WAL lets it read while the group-commit
-// writer appends, so a query never delays a Submit.
+// Reads the event log (what happened to messages) for the Events API, and
+// the received messages Subscribe replays after a seq, on its own read-only
+// connection: WAL lets it read while the group-commit writer appends, so a
+// query never delays a Submit.
 
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,26 @@ struct EventPage {
   bool truncated = false;           // more matched: these are the newest `limit`
 };
 
+// A received message as the store keeps it (for Subscribe's replay).
+struct StoredReceived {
+  int64_t seq = 0;
+  double time = 0;
+  std::string type;
+  int32_t src = -1;
+  int32_t dest = -1;
+  std::string encoded;  // its DCCL bytes
+};
+
+// Which received sequence numbers the store can still replay.
+struct ReceivedRange {
+  int64_t first = 0;  // the oldest seq still held; last + 1 when none is
+  int64_t last = 0;   // the newest seq handed out (0: none ever)
+
+  // Whether "everything after `after`" can still be replayed whole: false
+  // when some of it was pruned (Subscribe answers OUT_OF_RANGE).
+  bool replayable_after(int64_t after) const { return after >= last || after + 1 >= first; }
+};
+
 class EventLogReader {
  public:
   // Opens `store_path` read-only. Throws StoreError.
@@ -40,6 +62,13 @@ class EventLogReader {
   // Any thread. Throws std::invalid_argument for an unknown kind, StoreError
   // if the store cannot be read.
   EventPage query(const EventQuery& query);
+
+  // Any thread. Up to `limit` received messages with seq > `after`, of
+  // `types` (empty: all) and from `src` (unset: anyone), in seq order.
+  // Throws StoreError.
+  std::vector<StoredReceived> received_after(int64_t after, const std::vector<std::string>& types,
+                                             std::optional<int32_t> src, size_t limit);
+  ReceivedRange received_range();
 
  private:
   std::mutex mutex_;  // the connection is NOMUTEX

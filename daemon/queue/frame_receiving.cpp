@@ -53,6 +53,7 @@ std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32
       as_event.src = received.src;
       as_event.dest = received.dest;
       emit(QueueEventKind::kReceived, state, as_event, now, 0, "", false, false, received.encoded);
+      received.seq = last_received_seq();  // the number emit() just gave it
       out.push_back(std::move(received));
     } catch (const dccl::Error& e) {
       // DCCL has no length fields: after bytes that do not decode, nothing

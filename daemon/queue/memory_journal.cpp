@@ -1,5 +1,7 @@
 #include "queue/memory_journal.h"
 
+#include <algorithm>
+
 namespace acomms::queue {
 
 void MemoryJournal::append(JournalMessage message, Appended appended) {
@@ -44,6 +46,17 @@ std::vector<QueueEvent> MemoryJournal::events() const {
 size_t MemoryJournal::stored() const {
   std::lock_guard lock(mutex_);
   return messages_.size();
+}
+
+}  // namespace acomms::queue
+
+namespace acomms::queue {
+
+int64_t MemoryJournal::last_received_seq() {
+  std::lock_guard lock(mutex_);
+  int64_t last = 0;
+  for (const QueueEvent& event : events_) last = std::max(last, event.seq);
+  return last;
 }
 
 }  // namespace acomms::queue

@@ -19,6 +19,9 @@ class MemoryJournal final : public MessageJournal {
   std::vector<JournalMessage> load() override;
   std::vector<QueueEvent> received_since(double since) override;
   void flush() override {}
+  int64_t last_received_seq() override;
+  // Runs `committed` at once: memory has nothing to wait for.
+  void when_committed(Committed committed) override { committed(nullptr); }
 
   std::vector<QueueEvent> events() const;
   size_t stored() const;

@@ -74,6 +74,19 @@ class MessageJournal {
   // after a restart. Called at start-up.
   virtual std::vector<QueueEvent> received_since(double since) = 0;
 
+  // The last received sequence number handed out (0: none yet), read at
+  // start-up: the queue continues from it. Numbers are assigned by the
+  // queue (QueueEvent::seq) and made durable by record().
+  virtual int64_t last_received_seq() = 0;
+
+  // Does not wait: `committed` runs once everything recorded so far is
+  // committed, with a null error, or with why it was not. Runs on the
+  // journal's own thread (short, no waiting), in the order of the calls.
+  // A received message is published only from here, so that a subscriber
+  // never sees a sequence number a crash could hand out again.
+  using Committed = std::function<void(std::exception_ptr error)>;
+  virtual void when_committed(Committed committed) = 0;
+
   // Returns once everything recorded so far is committed.
   virtual void flush() = 0;
 };

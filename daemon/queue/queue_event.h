@@ -35,6 +35,9 @@ struct QueueEvent {
   // forgets the message in the same transaction that logs the event.
   bool removes_message = false;
   std::string encoded;  // kReceived: the message's DCCL bytes (see DuplicateFilter)
+  // kReceived: its received sequence number (1, 2, ...; never reused, see
+  // migrations/0005_received_sequence.sql); 0 on every other kind.
+  int64_t seq = 0;
 };
 
 struct JournalMessage;

@@ -111,6 +111,9 @@ void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMess
   event.detail = detail;
   event.removes_message = removes;
   event.encoded = encoded;
+  // Numbered here, on the core thread, so numbers follow the order messages
+  // are passed on; the journal makes each durable with its event.
+  if (kind == QueueEventKind::kReceived) event.seq = ++last_received_seq_;
   // Losses are worth an operator's attention; the rest is routine.
   auto level = (kind == QueueEventKind::kDropped || kind == QueueEventKind::kExpired)
                    ? spdlog::level::warn
@@ -126,6 +129,7 @@ void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMess
 void QueueManager::restore() {
   double now = clock_.now_seconds();
   size_t restored = 0;
+  last_received_seq_ = journal_.last_received_seq();
   for (JournalMessage& record : journal_.load()) {
     auto it = by_name_.find(record.type);
     QueuedMessage message;
@@ -170,10 +174,7 @@ void QueueManager::restore() {
 
   // A sender whose ACK was lost while this node was down sends again; what
   // was passed on before the restart must still count as seen.
-  double longest = 0;
-  for (const auto& [id, state] : by_id_) {
-    if (state.filter) longest = std::max(longest, state.filter->window_s());
-  }
+  const double longest = duplicate_window_s();
   if (longest > 0) {
     size_t remembered = 0;
     for (const QueueEvent& event : journal_.received_since(now - longest)) {
@@ -187,6 +188,15 @@ void QueueManager::restore() {
     spdlog::info("queue: {} message{} received in the last {} s remembered, so that retransmissions of them "
                  "are not passed on again", remembered, remembered == 1 ? "" : "s", longest);
   }
+}
+
+double QueueManager::duplicate_window_s() const {
+  ACOMMS_ASSERT_CORE_THREAD();
+  double longest = 0;
+  for (const auto& [id, state] : by_id_) {
+    if (state.filter) longest = std::max(longest, state.filter->window_s());
+  }
+  return longest;
 }
 
 double QueueManager::duplicate_window(const std::string& type) const {

@@ -58,6 +58,7 @@ struct ReceivedMessage {
   std::string type;
   std::unique_ptr<google::protobuf::Message> message;
   std::string encoded;  // its DCCL bytes, as received
+  int64_t seq = 0;      // its received sequence number (QueueEvent::seq)
   int32_t src = -1;   // from the source role, else the transmission's source
   int32_t dest = 0;
   double time = 0;    // when it was received
@@ -142,6 +143,13 @@ class QueueManager {
   // The type's duplicate window W in seconds (0: off); Submit refuses a
   // ttl_s above it. Throws UnknownTypeError.
   double duplicate_window(const std::string& type) const;
+  // The longest any type's duplicate filter looks back (seconds; 0: none
+  // does): received events this recent are read back at start, so the
+  // event log must keep them. Core thread only (queues come and go).
+  double duplicate_window_s() const;
+  // The received sequence number given to the last message received (0:
+  // none yet); continues across restarts from the journal.
+  int64_t last_received_seq() const { return last_received_seq_; }
 
  private:
   // The steps of a submit, run in order on their threads by
@@ -217,6 +225,7 @@ class QueueManager {
   double clock_skew_s_;        // queue.clock_skew_s
   uint64_t duplicates_ = 0;
   uint64_t stale_refused_ = 0;
+  int64_t last_received_seq_ = 0;
 };
 
 }  // namespace acomms::queue

@@ -15,8 +15,12 @@ constexpr std::string_view kInsertMessage =
     "INSERT INTO queued_messages (type, payload, src, dest, submitted_at, ttl_s) "
     "VALUES (?, ?, ?, ?, ?, ?)";
 constexpr std::string_view kInsertEvent =
-    "INSERT INTO event_log (time, kind, type, message_id, frame_id, src, dest, detail, encoded) "
-    "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)";
+    "INSERT INTO event_log (time, kind, type, message_id, frame_id, src, dest, detail, encoded, seq) "
+    "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
+// MAX: the counter never goes back, whatever order numbers arrive in.
+constexpr std::string_view kAdvanceReceivedSeq =
+    "UPDATE event_sequence SET last = MAX(last, ?) WHERE name = 'received'";
+constexpr std::string_view kLastReceivedSeq = "SELECT last FROM event_sequence WHERE name = 'received'";
 constexpr std::string_view kDeleteMessage = "DELETE FROM queued_messages WHERE id = ?";
 constexpr std::string_view kLoadMessages =
     "SELECT id, type, payload, src, dest, submitted_at, ttl_s FROM queued_messages ORDER BY id";
@@ -115,7 +119,16 @@ void SqliteJournal::write_event(const QueueEvent& event) {
   } else {
     insert.bind_blob(9, event.encoded);
   }
+  bind_or_null(insert, 10, event.seq, 0);
   insert.step();
+  if (event.seq != 0) {
+    // The number and its event are durable together: after a crash the
+    // counter is past every number a subscriber can have seen.
+    Statement& advance = writer_.prepared(kAdvanceReceivedSeq);
+    ResetOnExit reset_advance(advance);
+    advance.bind(1, event.seq);
+    advance.step();
+  }
   // Same savepoint, same transaction: the event and the removal are on disk
   // together or not at all.
   if (event.removes_message && event.message_id != 0) {
@@ -165,6 +178,21 @@ std::vector<QueueEvent> SqliteJournal::received_since(double since) {
         return events;
       })
       .get();
+}
+
+int64_t SqliteJournal::last_received_seq() {
+  return writer_
+      .submit([](Database& db) {
+        Statement query = db.prepare(kLastReceivedSeq);
+        return query.step() ? query.column_int64(0) : int64_t{0};
+      })
+      .get();
+}
+
+void SqliteJournal::when_committed(Committed committed) {
+  // An empty request: its batch commits after every request queued before
+  // it, and batches complete in order.
+  writer_.post([](Database&) {}, std::move(committed));
 }
 
 void SqliteJournal::flush() { writer_.flush(); }

@@ -30,6 +30,10 @@ class SqliteJournal final : public MessageJournal {
   // Throws store::StoreError when the store cannot be read.
   std::vector<JournalMessage> load() override;
   std::vector<QueueEvent> received_since(double since) override;
+  // Throws store::StoreError when the store cannot be read.
+  int64_t last_received_seq() override;
+  // Throws store::StoreError when the writer is stopped.
+  void when_committed(Committed committed) override;
   // Throws store::StoreError when the last batch failed to commit.
   void flush() override;
 

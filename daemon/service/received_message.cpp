@@ -13,6 +13,7 @@ v1::ReceivedMessage to_received_message(const queue::ReceivedMessage& message,
   out.set_src(message.src);
   out.set_dest(message.dest);
   out.set_receive_time(message.time);
+  out.set_seq(message.seq);
   v1::LinkFigures* link = out.mutable_link();
   link->set_transmission_src(transmission.src());
   link->set_rate(transmission.rate());

@@ -1,5 +1,24 @@
-// Subscribe: received messages streamed to a client.
+// Subscribe: received messages streamed to a client, optionally resuming
+// from the store after a sequence number the client last handled.
+//
+// The seam between replay and live, and why it has neither gap nor
+// duplicate:
+//  1. A message is published to live subscriptions only after its event,
+//     carrying its seq, is committed (daemon.cpp), and messages are
+//     published in seq order.
+//  2. The stream subscribes to live messages *before* it reads the store.
+//     So every message is either committed before a replay read (and the
+//     read finds it) or committed after it, and then published after the
+//     subscription exists (and it is in the live buffer). Nothing falls
+//     between.
+//  3. Replay ends when a read finds nothing newer; `cursor` is then the
+//     last seq written. Live messages with seq <= cursor were replayed
+//     already and are skipped; the rest are newer, in order.
+// INVARIANT: the seqs written to one stream strictly increase.
+#include <spdlog/spdlog.h>
+
 #include "service/acomms_service.h"
+#include "service/message_json.h"
 #include "service/rpc_status.h"
 
 namespace acomms::service {
@@ -7,6 +26,27 @@ namespace {
 
 // How often a waiting stream checks whether its client went away.
 constexpr std::chrono::milliseconds kPollCancel(200);
+// Stored messages read per query while replaying.
+constexpr size_t kReplayPage = 256;
+
+v1::ReceivedMessage from_store(const queue::StoredReceived& stored, const dccl::Codec& codec) {
+  v1::ReceivedMessage out;
+  out.set_type(stored.type);
+  out.set_src(stored.src);
+  out.set_dest(stored.dest < 0 ? 0 : stored.dest);
+  out.set_receive_time(stored.time);
+  out.set_seq(stored.seq);
+  try {
+    auto message = codec.decode_as(stored.type, stored.encoded);
+    out.set_payload(message->SerializePartialAsString());
+    out.set_json(to_json(*message));
+  } catch (const std::exception& e) {
+    // Still sent (with no payload): a resuming client must see every seq.
+    spdlog::warn("subscribe: stored message seq {} of type {} no longer decodes: {}", stored.seq, stored.type,
+                 e.what());
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -23,14 +63,56 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
     }
   }
   if (request->has_src()) filter.src = request->src();
+  const std::vector<std::string> types(filter.types.begin(), filter.types.end());
+  const std::optional<int32_t> src = filter.src;
+  // Live first (seam step 2), then the store.
   std::shared_ptr<Subscription> subscription = node_.subscribers.subscribe(std::move(filter));
+  int64_t cursor = 0;
+  if (request->has_after()) {
+    cursor = request->after();
+    if (cursor < 0) {
+      node_.subscribers.unsubscribe(subscription);
+      return {grpc::StatusCode::INVALID_ARGUMENT, "after must be 0 or more (got " + std::to_string(cursor) + ")"};
+    }
+    queue::ReceivedRange range = node_.events.received_range();
+    if (!range.replayable_after(cursor)) {
+      node_.subscribers.unsubscribe(subscription);
+      return {grpc::StatusCode::OUT_OF_RANGE,
+              "received messages after seq " + std::to_string(cursor) + " were pruned; the first still held is " +
+                  std::to_string(range.first) + " (store.event_retention_days / event_retention_mb)"};
+    }
+  }
   // Headers go out now, so the client knows it is subscribed before the
   // first message (tests and tools wait for this).
   writer->SendInitialMetadata();
   grpc::Status result = grpc::Status::OK;
-  while (!context->IsCancelled()) {
+  bool gone = false;
+  if (request->has_after()) {
+    for (;;) {
+      std::vector<queue::StoredReceived> page = node_.events.received_after(cursor, types, src, kReplayPage);
+      if (page.empty() || context->IsCancelled()) break;
+      std::vector<v1::ReceivedMessage> messages;
+      {
+        // Decoded under the lock, written without it: a slow client must
+        // not hold up loading definitions.
+        auto stable = node_.submitter.types_stable();
+        for (const queue::StoredReceived& stored : page) messages.push_back(from_store(stored, node_.codec));
+      }
+      for (const v1::ReceivedMessage& message : messages) {
+        if (!writer->Write(message)) {
+          gone = true;
+          break;
+        }
+        cursor = message.seq();
+      }
+      if (gone) break;
+    }
+  }
+  while (!gone && !context->IsCancelled()) {
     if (std::optional<v1::ReceivedMessage> message = subscription->next(kPollCancel)) {
+      if (message->seq() <= cursor) continue;  // replayed already (seam step 3)
       if (!writer->Write(*message)) break;  // the client went away
+      cursor = message->seq();
       continue;
     }
     if (std::optional<grpc::Status> ended = subscription->ended()) {

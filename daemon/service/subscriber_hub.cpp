@@ -69,7 +69,7 @@ void SubscriberHub::unsubscribe(const std::shared_ptr<Subscription>& subscriptio
 void SubscriberHub::publish(const v1::ReceivedMessage& message) {
   std::lock_guard lock(mutex_);
   // Subscribers that were ended (too slow) leave the list here, on the
-  // next message, so the core thread never waits for their stream to close.
+  // next message, so the publishing thread never waits for their stream to close.
   auto gone = std::remove_if(subscribers_.begin(), subscribers_.end(), [&](const auto& subscription) {
     if (subscription->wants(message)) subscription->offer(message);
     if (!subscription->ended()) return false;

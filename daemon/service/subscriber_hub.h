@@ -1,9 +1,8 @@
 #pragma once
 // Fans received messages out to Subscribe streams.
 //
-// The link must never wait for a client: publish() runs on the core thread
-// and only appends to each matching subscriber's bounded buffer. A
-// subscriber whose buffer is full has fallen behind for good (acoustic
+// The link must never wait for a client: publish() only appends to each
+// matching subscriber's bounded buffer. A subscriber whose buffer is full has fallen behind for good (acoustic
 // traffic is a few messages a minute; a full buffer means the client stopped
 // reading), so it is ended with RESOURCE_EXHAUSTED instead of silently
 // losing messages in the middle of its stream.
@@ -68,7 +67,10 @@ class SubscriberHub {
   std::shared_ptr<Subscription> subscribe(Subscription::Filter filter);
   void unsubscribe(const std::shared_ptr<Subscription>& subscription);
 
-  // Core thread: hands `message` to every subscriber that wants it.
+  // Hands `message` to every subscriber that wants it. One thread at a
+  // time, in seq order: the daemon calls it from the store writer's thread
+  // once the message's seq is committed (see service/subscribe_rpc.cpp for
+  // why), and it never waits for a client.
   void publish(const v1::ReceivedMessage& message);
 
   // Ends every subscription with UNAVAILABLE (the daemon is stopping).

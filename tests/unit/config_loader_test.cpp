@@ -182,6 +182,15 @@ TEST(ConfigLoader, BadDriverAndMacNamesAreRefused) {
   EXPECT_EQ(mac.line(), 2);
 }
 
+TEST(ConfigLoader, NegativeEventRetentionIsRefusedNamingTheField) {
+  ConfigError days = parse_error("store {\n event_retention_days: -1\n}");
+  EXPECT_EQ(days.field(), "store.event_retention_days");
+  EXPECT_EQ(days.line(), 2);
+  EXPECT_NE(days.problem().find("0 (no age bound) or more"), std::string::npos) << days.problem();
+  ConfigError mb = parse_error("store { event_retention_mb: -5 }");
+  EXPECT_EQ(mb.field(), "store.event_retention_mb");
+}
+
 TEST(ConfigLoader, MissingFileIsNamed) {
   try {
     load_config_file("/nonexistent/acommsd.conf");
