@@ -376,4 +376,15 @@ void MicroModemDriver::on_error(const Sentence& s) {
   cycle_.on_error(*error);
 }
 
+std::chrono::nanoseconds MicroModemDriver::packet_air_time(int32_t rate, uint32_t num_frames) const {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(link::Driver::packet_air_time(rate, num_frames) /
+                                                              time_scale_);
+}
+
+std::chrono::nanoseconds MicroModemDriver::ack_time(int32_t rate) const {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(link::Driver::ack_time(rate) / time_scale_);
+}
+
+double MicroModemDriver::sound_speed() const { return link::Driver::sound_speed() * time_scale_; }
+
 }  // namespace acomms::drivers::micromodem

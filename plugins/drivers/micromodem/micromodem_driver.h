@@ -58,6 +58,13 @@ class MicroModemDriver final : public link::Driver {
   void stop() override;
   void do_work() override;
   void initiate_transmission(const v1::ModemTransmission& transmission) override;
+  // The slot budget's figures (link/slot_budget.h): the rate table's, with
+  // its margin, on the modem's clock. A modem run time_scale times faster
+  // (the fake, in tests) takes that much less time on the air and in the
+  // water, so the same slots carry the same frames.
+  std::chrono::nanoseconds packet_air_time(int32_t rate, uint32_t num_frames) const override;
+  std::chrono::nanoseconds ack_time(int32_t rate) const override;
+  double sound_speed() const override;
 
   int32_t modem_id() const { return id_; }
   // Start-up finished and no reboot since.
