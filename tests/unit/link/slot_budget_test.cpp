@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "exact_modem.h"
+
 #include "link/rate_table.h"
 
 namespace acomms::link {
@@ -13,18 +15,7 @@ namespace {
 
 using namespace std::chrono_literals;
 
-// Exact Micro-Modem figures (as the simulator has them): no margin.
-class ExactModem final : public Driver {
- public:
-  void start(DriverCallbacks) override {}
-  void stop() override {}
-  void do_work() override {}
-  void initiate_transmission(const v1::ModemTransmission&) override {}
-  std::chrono::nanoseconds packet_air_time(int32_t rate, uint32_t num_frames) const override {
-    return link::packet_air_time(*find_rate(rate), num_frames);
-  }
-  std::chrono::nanoseconds ack_time(int32_t) const override { return kTurnaround + kMiniPacket; }
-};
+using testing::ExactModem;
 
 // The defaults: a real modem's estimate, with the margin.
 class DefaultModem final : public Driver {

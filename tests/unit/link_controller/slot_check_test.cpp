@@ -6,23 +6,14 @@
 #include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
 
+#include "../link/exact_modem.h"
+
 #include "link/rate_table.h"
 
 namespace acomms::link {
 namespace {
 
-// The simulator's exact timing (the rate table, 0.5 s + 0.7 s for an ACK).
-class ExactModem final : public Driver {
- public:
-  void start(DriverCallbacks) override {}
-  void stop() override {}
-  void do_work() override {}
-  void initiate_transmission(const v1::ModemTransmission&) override {}
-  std::chrono::nanoseconds packet_air_time(int32_t rate, uint32_t num_frames) const override {
-    return link::packet_air_time(*find_rate(rate), num_frames);
-  }
-  std::chrono::nanoseconds ack_time(int32_t) const override { return kTurnaround + kMiniPacket; }
-};
+using testing::ExactModem;
 
 v1::MacConfig mac(const std::string& text) {
   v1::MacConfig config;
