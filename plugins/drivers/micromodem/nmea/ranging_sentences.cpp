@@ -1,7 +1,6 @@
 #include "micromodem/nmea/ranging_sentences.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include "micromodem/nmea/cycle_sentences.h"
 #include "micromodem/nmea/field_reader.h"
@@ -17,11 +16,8 @@ constexpr double kMaxTravelTime = 100;
 
 std::string n(int64_t value) { return std::to_string(value); }
 
-std::string seconds_text(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4f", seconds);
-  return text;
-}
+// Shortest exact form, so what is parsed is what is written again.
+std::string seconds_text(double seconds) { return format_real(seconds); }
 
 double travel_time(FieldReader& reader, size_t number, const char* name) {
   double t = reader.real(number, name);
