@@ -221,7 +221,13 @@ void LinkController::on_transmit_result(const v1::ModemTransmission& transmissio
                                         const std::string& error) {
   if (extra_after_poll_answer_ && transmission.src() == own_id_) {
     extra_after_poll_answer_ = false;
-    gate_.send_next(driver_, "the channel a poll gave this node");
+    // Not from inside the driver's report: it may not be idle until that returns.
+    auto send = [this] { gate_.send_next(driver_, "the channel a poll gave this node"); };
+    if (options_.scheduler != nullptr) {
+      options_.scheduler->after(std::chrono::system_clock::duration::zero(), send);
+    } else {
+      send();
+    }
   }
   if (ok) {
     ++stats_.transmissions_sent;

@@ -145,6 +145,7 @@ TEST_F(DriverSpecificGateTest, ASlotlessNodeSendsWhenAPollGivesItTheChannel) {
   scheduler_.run_for(1s);
   // ... and the extra follows once that answer has gone.
   driver_.report(answer);
+  scheduler_.run_for(0s);  // sent once the driver's report has returned
   ASSERT_EQ(driver_.sent_at.size(), 1u);
   EXPECT_DOUBLE_EQ(driver_.sent_at[0], 3);
 }
