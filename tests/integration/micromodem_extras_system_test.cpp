@@ -5,12 +5,15 @@
 // geometry, `link lbl` both kinds with a transponder that never answers,
 // and `link mini` reaches the other daemon's subscriber as its own message
 // type. The fake and drivers run 4x faster than real time; the MAC's slots
-// are real seconds, so each request first waits for its node's slot.
+// are real seconds, so each request first waits for its node's slot: the
+// raw link logs show each extra's first command at its node's slot start.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -86,6 +89,21 @@ class MicroModemExtras : public ::testing::Test {
     args.insert(args.begin(), {"--socket", socket(id)});
     return run(ACOMMSCTL_BINARY, args, (dir_ / ("ctl" + std::to_string(++runs_))).string());
   }
+  // Seconds into the 6 s TDMA cycle (slots align to midnight UTC) at which
+  // node `id` wrote the first line starting with `prefix`; -1 if none.
+  double cycle_offset_of(int id, const std::string& prefix) {
+    std::ifstream raw(dir_ / ("node" + std::to_string(id)) / "link-raw.log");
+    std::string line;
+    while (std::getline(raw, line)) {
+      size_t at = line.find(" >> ");
+      if (at == std::string::npos || line.compare(at + 4, prefix.size(), prefix) != 0) continue;
+      int hour = 0, minute = 0;
+      double second = 0;
+      if (std::sscanf(line.c_str(), "%*d-%*d-%*dT%d:%d:%lfZ", &hour, &minute, &second) != 3) return -1;
+      return std::fmod(hour * 3600.0 + minute * 60.0 + second, 6.0);
+    }
+    return -1;
+  }
   std::string logs() { return "node 1:\n" + daemons_[1]->stderr_text() + "\nnode 2:\n" + daemons_[2]->stderr_text(); }
 
   fs::path dir_;
@@ -114,13 +132,21 @@ TEST_F(MicroModemExtras, PingLblAndAMiniPacketThroughAcommsctl) {
       << ping.out;
   EXPECT_NEAR(travel, 1.0, 0.002) << ping.out;
   EXPECT_NEAR(range, 1500, 3);
-  EXPECT_GE(waited, 0);
+  EXPECT_GT(waited, 0);  // a request never goes before its node's next slot begins
+  // The slot rule on the wire: node 2's slot is [3, 6) s of each cycle, and
+  // the ping's command left at its start.
+  double ping_at = cycle_offset_of(2, "$CCMPC,2,1*");
+  EXPECT_GE(ping_at, 3.0);
+  EXPECT_LT(ping_at, 3.5);
 
   // Narrowband LBL from node 1: A answers (0.5 s), the 28 kHz one does not.
   RunResult nb = ctl(1, {"link", "lbl", "--narrowband", "26000,28000", "--wait", "30"});
   ASSERT_EQ(nb.exit_code, 0) << nb.err << logs();
   EXPECT_NE(nb.out.find("A (26000 Hz) one-way travel time 0.5000 s, range 750.0 m"), std::string::npos) << nb.out;
   EXPECT_NE(nb.out.find("B (28000 Hz) no reply"), std::string::npos) << nb.out;
+  double lbl_at = cycle_offset_of(1, "$CCCFG,TAT,50*");  // the LBL's first command, in node 1's slot [0, 3)
+  EXPECT_GE(lbl_at, 0.0);
+  EXPECT_LT(lbl_at, 0.5);
 
   // REMUS LBL: A at 300 m (0.2 s), B silent.
   RunResult remus = ctl(1, {"link", "lbl", "--remus", "AB", "--wait", "30"});
