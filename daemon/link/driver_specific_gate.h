@@ -10,7 +10,9 @@
 // start of one of its own slots (the slot carries the extra instead of
 // data), or, for a node with no slot of its own (MAC "none", a node the
 // polled master polls), when a poll gives it the channel (the poll is
-// answered with one blank frame and the extra follows at once). Until then
+// answered with one blank frame and the extra follows once that answer has
+// cleared the water: the sound's travel to mac.max_range_m plus an ACK's
+// time, so the poller is not still hearing it). Until then
 // the request waits here, oldest first; the wait counts against its
 // deadline, and a request whose deadline passes while it waits fails with
 // kDeadlineExceeded saying it never got the channel. What is left of the

@@ -221,10 +221,15 @@ void LinkController::on_transmit_result(const v1::ModemTransmission& transmissio
                                         const std::string& error) {
   if (extra_after_poll_answer_ && transmission.src() == own_id_) {
     extra_after_poll_answer_ = false;
-    // Not from inside the driver's report: it may not be idle until that returns.
+    // Not at once: the answer is still in the water, and the extra would
+    // arrive at the poller while it is hearing the answer (and lose both).
+    // So after the answer has travelled the farthest range and been heard
+    // (with room for an ACK), as the slot budget counts it.
     auto send = [this] { gate_.send_next(driver_, "the channel a poll gave this node"); };
     if (options_.scheduler != nullptr) {
-      options_.scheduler->after(std::chrono::system_clock::duration::zero(), send);
+      auto clear = std::chrono::duration_cast<std::chrono::system_clock::duration>(
+          travel_time(driver_, options_.max_range_m) + driver_.ack_time(transmission.rate()));
+      options_.scheduler->after(clear, send);
     } else {
       send();
     }

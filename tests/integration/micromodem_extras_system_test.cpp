@@ -11,6 +11,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -77,7 +78,11 @@ class MicroModemExtras : public ::testing::Test {
            << "dccl { proto_files: \"" << ACOMMS_SOURCE_DIR << "/examples/messages.proto\" }\n"
            << "driver { name: \"micromodem\" modem_id: " << id << " micromodem { port: \"tcp:" << address_[id]
            << "\" time_scale: " << kTimeScale << " max_range_m: 2000 } }\n"
-           << "mac { name: \"fixed\" slot { src: 1 rate: 1 seconds: 3 } slot { src: 2 rate: 1 seconds: 3 } }\n";
+           << "mac { " << mac_for(id) << " }\n";
+  }
+  // Fixed TDMA: node 1 in [0, 3) s, node 2 in [3, 6) s of each 6 s cycle.
+  virtual std::string mac_for(int) const {
+    return "name: \"fixed\" slot { src: 1 rate: 1 seconds: 3 } slot { src: 2 rate: 1 seconds: 3 }";
   }
   void start(int id) {
     daemons_[id] = std::make_unique<ChildProcess>(
@@ -186,6 +191,54 @@ TEST_F(MicroModemExtras, PingLblAndAMiniPacketThroughAcommsctl) {
   EXPECT_EQ(received[0].src(), 2);
   EXPECT_EQ(received[0].dest(), 1);
   EXPECT_NE(received[0].json().find("\"value\":6844"), std::string::npos) << received[0].json();
+}
+
+// Node 1 is the polled master; node 2 (MAC "none") has no slot of its own:
+// its ping goes when the master's poll gives it the channel, after the
+// poll's answer (one blank frame).
+class MicroModemExtrasPolled : public MicroModemExtras {
+ protected:
+  std::string mac_for(int id) const override {
+    return id == 1 ? "name: \"polled\" slot { src: 1 rate: 1 seconds: 3 } slot { src: 2 dest: 1 rate: 1 seconds: 3 }"
+                   : "name: \"none\"";
+  }
+  // Outgoing lines of node `id`'s raw log, in order.
+  std::vector<std::string> written(int id) {
+    std::ifstream raw(dir_ / ("node" + std::to_string(id)) / "link-raw.log");
+    std::vector<std::string> out;
+    for (std::string line; std::getline(raw, line);) {
+      size_t at = line.find(" >> ");
+      if (at != std::string::npos) out.push_back(line.substr(at + 4));
+    }
+    return out;
+  }
+};
+
+TEST_F(MicroModemExtrasPolled, ANodeWithoutSlotsPingsWhenAPollGivesItTheChannel) {
+  ASSERT_TRUE(wait_until([&] { return ctl(2, {"link", "status"}).out.find("running") != std::string::npos; }, 20s));
+  RunResult ping;
+  for (int tries = 0; tries < 3; ++tries) {
+    ping = ctl(2, {"link", "ping", "1", "--wait", "30"});
+    if (ping.exit_code == 0) break;
+  }
+  ASSERT_EQ(ping.exit_code, 0) << ping.err << logs();
+  double travel = 0, range = 0, waited = -1;
+  ASSERT_EQ(std::sscanf(ping.out.c_str(), "modem 1: one-way travel time %lf s, range %lf m (waited %lf s", &travel,
+                        &range, &waited),
+            3)
+      << ping.out;
+  EXPECT_NEAR(travel, 1.0, 0.002);
+  EXPECT_GT(waited, 0);
+  // Node 2's last command before the ping answered the poll ($CCTXD, the
+  // blank frame); keep-alive queries aside.
+  std::vector<std::string> lines = written(2);
+  auto ping_line = std::find_if(lines.begin(), lines.end(), [](const std::string& l) { return l.starts_with("$CCMPC,2,1*"); });
+  ASSERT_NE(ping_line, lines.end());
+  std::string before;
+  for (auto it = lines.begin(); it != ping_line; ++it) {
+    if (!it->starts_with("$CCCFQ")) before = *it;
+  }
+  EXPECT_TRUE(before.starts_with("$CCTXD,2,")) << "before the ping: " << before;
 }
 
 }  // namespace

@@ -305,9 +305,9 @@ void DriverSpecificExchange::wait(Phase phase, Duration modem_time, std::string 
   current_->timer = scheduler_.after(delay, [this, id, phase, deadline_first, own_s, what] {
     if (!current_ || current_->id != id) return;
     current_->timer = 0;
-    const char* awaited = phase == Phase::kAwaitReply       ? "its answer"
+    const char* awaited = phase == Phase::kAwaitReply       ? "answer"
                           : phase == Phase::kAwaitTransmitted ? "$CATXF (transmission finished)"
-                                                              : "the destination's FDP acknowledgement";
+                                                              : "FDP acknowledgement from the destination";
     if (deadline_first) {
       return finish(DriverSpecificStatus::kDeadlineExceeded,
                     std::string("the call's deadline passed while ") + what + " waited for " + awaited);

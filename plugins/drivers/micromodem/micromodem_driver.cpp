@@ -144,7 +144,7 @@ void MicroModemDriver::do_work() {
 }
 
 void MicroModemDriver::keep_alive() {
-  if (!ready_ || !cycle_.idle() || !commands_.idle()) return;
+  if (!ready_ || !cycle_.idle() || !commands_.idle() || !extras_.idle()) return;
   if (scheduler_.clock().now() - last_line_ < scaled(kKeepAlive)) return;
   last_line_ = scheduler_.clock().now();  // one probe per quiet period
   commands_.push({to_sentence(nmea::ConfigQuery{"SRC"}),

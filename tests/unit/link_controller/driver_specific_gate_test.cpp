@@ -145,9 +145,15 @@ TEST_F(DriverSpecificGateTest, ASlotlessNodeSendsWhenAPollGivesItTheChannel) {
   scheduler_.run_for(1s);
   // ... and the extra follows once that answer has gone.
   driver_.report(answer);
-  scheduler_.run_for(0s);  // sent once the driver's report has returned
+  // Not while the answer may still be heard at the poller: the sound's
+  // travel to max_range_m (2000 m at 1500 m/s) and an ACK's time
+  // (0.5 s turnaround + a 0.7 s mini-packet, plus 10 %) go first.
+  double clear = 2000.0 / 1500 + 1.2 * 1.1;
+  scheduler_.run_for(std::chrono::milliseconds(static_cast<int>(clear * 1000) - 10));
+  EXPECT_TRUE(driver_.sent_at.empty());
+  scheduler_.run_for(20ms);
   ASSERT_EQ(driver_.sent_at.size(), 1u);
-  EXPECT_DOUBLE_EQ(driver_.sent_at[0], 3);
+  EXPECT_NEAR(driver_.sent_at[0], 3 + clear, 0.001);
 }
 
 TEST_F(DriverSpecificGateTest, TheDriversRefusalComesAtOnceWithoutWaiting) {
