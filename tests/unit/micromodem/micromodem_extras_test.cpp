@@ -263,6 +263,24 @@ TEST_F(MicroModemExtrasTest, FdpTowardsAModemKnownToBeMm1IsRefusedAtOnce) {
   EXPECT_EQ(a_->driver->check_driver_specific(request(3, ask)).status, DriverSpecificStatus::kOk);
 }
 
+TEST_F(MicroModemExtrasTest, FdpToAnUnlistedMm1GoesOutButIsNeverAcknowledged) {
+  two_nodes(Generation::kMM2, Generation::kMM1, {});
+  // Only node 1 needs (and an MM1 refuses) the MM2 header setting.
+  a_->config.mutable_micromodem()->add_cfg("psk.packet.mod_hdr_version,1");
+  a_->driver = std::make_unique<MicroModemDriver>(a_->config, scheduler_,
+                                                  std::make_unique<FakeModemPort>(a_->modem, scheduler_, &a_->written));
+  a_->start();
+  run(8s);
+  ASSERT_TRUE(a_->driver->ready());
+  MicroModemTransmission ask = kind(MicroModemTransmission::FDP);
+  ask.set_fdp_data("hi");
+  DriverSpecificResult result = send(request(2, ask));
+  ASSERT_EQ(result.status, DriverSpecificStatus::kOk) << result.error;
+  EXPECT_FALSE(result.transmission.GetExtension(drivers::micromodem_transmission).fdp_acknowledged());
+  EXPECT_TRUE(b_->received_driver_specific().empty());
+  EXPECT_EQ(b_->written.find("$CCTDP"), std::string::npos);  // nothing to acknowledge
+}
+
 TEST_F(MicroModemExtrasTest, FdpOnAnMm1IsRefusedAtOnceSayingItNeedsAnMm2) {
   two_nodes(Generation::kMM1, Generation::kMM2);
   MicroModemTransmission ask = kind(MicroModemTransmission::FDP);
