@@ -43,12 +43,22 @@ DriverSpecificExchange::Settings extra_settings(const v1::DriverConfig& config, 
   DriverSpecificExchange::Settings settings;
   settings.own_id = id;
   settings.time_scale = scale_of(config);
-  if (config.micromodem().sound_speed_mps() > 0) settings.sound_speed = config.micromodem().sound_speed_mps();
+  double c = config.micromodem().sound_speed_mps();
+  if (c < 0 || (c > 0 && (c < 1000 || c > 2000))) {
+    throw std::invalid_argument("driver.micromodem.sound_speed_mps " + std::to_string(c) +
+                                " is outside 1000..2000 m/s (0: 1500)");
+  }
+  if (c > 0) settings.sound_speed = c;
   if (config.micromodem().max_range_m() > 0) settings.max_range_m = config.micromodem().max_range_m();
   for (const ConfigParameter& p : user_cfg_of(config)) {
     if (p.name == "psk.packet.mod_hdr_version") settings.fdp_configured = p.value == "1";
   }
-  for (uint32_t mm1 : config.micromodem().mm1_modems()) settings.mm1_modems.push_back(static_cast<int32_t>(mm1));
+  for (uint32_t mm1 : config.micromodem().mm1_modems()) {
+    if (mm1 < 1 || mm1 > static_cast<uint32_t>(nmea::kMaxAddress)) {
+      throw std::invalid_argument("driver.micromodem.mm1_modems " + std::to_string(mm1) + " is not a modem id (1..127)");
+    }
+    settings.mm1_modems.push_back(static_cast<int32_t>(mm1));
+  }
   return settings;
 }
 

@@ -333,5 +333,28 @@ TEST_F(MicroModemExtrasTest, AModemRebootFailsTheExtraInProgress) {
   EXPECT_NE(result->error.find("reboot"), std::string::npos) << result->error;
 }
 
+TEST_F(MicroModemExtrasTest, BadExtrasSettingsAreConfigErrorsNamingTheField) {
+  FakeMicroModem modem(water_, FakeModemConfig{});
+  std::string written;
+  v1::DriverConfig config;
+  config.set_name("micromodem");
+  config.set_modem_id(1);
+  config.mutable_micromodem()->set_sound_speed_mps(50);
+  try {
+    MicroModemDriver driver(config, scheduler_, std::make_unique<FakeModemPort>(modem, scheduler_, &written));
+    ADD_FAILURE() << "a sound speed of 50 m/s was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("driver.micromodem.sound_speed_mps"), std::string::npos) << e.what();
+  }
+  config.mutable_micromodem()->set_sound_speed_mps(0);
+  config.mutable_micromodem()->add_mm1_modems(200);
+  try {
+    MicroModemDriver driver(config, scheduler_, std::make_unique<FakeModemPort>(modem, scheduler_, &written));
+    ADD_FAILURE() << "mm1_modems 200 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("driver.micromodem.mm1_modems 200"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace acomms::fake_micromodem
