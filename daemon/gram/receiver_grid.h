@@ -5,7 +5,10 @@
 // without scanning the whole grid. Decision: receivers are grouped into
 // columns of equal range, sorted by range, each with its depths sorted; both
 // a rectilinear grid and an irregular list map to this. `index` is the
-// receiver's position in the caller's output order.
+// receiver's position in the caller's output order. Searches run once per
+// ray step (millions of times per run): on evenly spaced ranges or depths
+// the index is computed, then corrected by at most a step or two, so the
+// answer is exactly the binary search's at O(1) cost.
 // Immutable after construction; shared by tracing threads.
 #pragma once
 
@@ -21,6 +24,26 @@ struct ReceiverColumn {
   std::vector<double> depth_m;      // ascending
   std::vector<std::size_t> index;   // output index of each depth
   double uniform_spacing = 0;       // the depth step if evenly spaced, else 0
+  double inverse_spacing = 0;       // 1 / uniform_spacing, or 0
+
+  // First depth index with depth ≥ z (depth_m.size() if none).
+  std::size_t first_depth_at_or_after(double z) const {
+    return first_at_or_after(depth_m, inverse_spacing, z);
+  }
+  // The search behind both lookups: `inverse_step` > 0 if `sorted` is
+  // evenly spaced (1 / the step), else 0 (binary search).
+  static std::size_t first_at_or_after(const std::vector<double>& sorted, double inverse_step, double x) {
+    if (inverse_step <= 0) return binary_search(sorted, x);
+    // Estimate, then move to the exact answer (the spacing is even to 1e-9
+    // relative, so the estimate is off by at most one).
+    const std::size_t n = sorted.size();
+    const double at = (x - sorted.front()) * inverse_step;
+    std::size_t i = !(at > 0) ? 0 : at >= static_cast<double>(n) ? n : static_cast<std::size_t>(at);
+    while (i > 0 && sorted[i - 1] >= x) --i;
+    while (i < n && sorted[i] < x) ++i;
+    return i;
+  }
+  static std::size_t binary_search(const std::vector<double>& sorted, double x);
 };
 
 class ReceiverGrid {
@@ -29,11 +52,17 @@ class ReceiverGrid {
 
   const std::vector<ReceiverColumn>& columns() const { return columns_; }
   std::size_t size() const { return size_; }
+  std::size_t column_count() const { return ranges_.size(); }
+  double column_range(std::size_t j) const { return ranges_[j]; }
   // First column with range ≥ r.
-  std::size_t first_column_at_or_after(double r) const;
+  std::size_t first_column_at_or_after(double r) const {
+    return ReceiverColumn::first_at_or_after(ranges_, inverse_range_step_, r);
+  }
 
  private:
   std::vector<ReceiverColumn> columns_;
+  std::vector<double> ranges_;  // columns_[j].range_m, contiguous for the search
+  double inverse_range_step_ = 0;  // 1 / the range step if evenly spaced, else 0
   std::size_t size_ = 0;
 };
 
