@@ -45,7 +45,8 @@ class RayTracer {
   bool next();
 
  private:
-  // Writes the step of length h from `from` into `out` (not `from`).
+  // Writes r, z, ξ, ζ, τ, q, p, s of the step of length h from `from` into
+  // `out` (not `from`); the other fields of `out` are left to the caller.
   void integrate(const RayPoint& from, const SoundSpeedProfile::Value& at_from, double h,
                  RayPoint& out) const;
   void land_on_node(std::size_t node);
