@@ -40,8 +40,8 @@ void BeamInfluence::add_columns(std::size_t j, double r_hi, const RayPoint& a, c
     const double sigma = hat ? width : std::max(width, wavelength);
     const double reach_n = hat ? width : 4.0 * sigma;
     const double reach_z = reach_n / std::abs(tr);
-    const auto& depths = col.depth_m;
-    std::size_t k = col.first_depth_at_or_after(z_ray - reach_z);
+    const auto& depths = receivers_.depths(col);
+    std::size_t k = receivers_.first_depth_at_or_after(col, z_ray - reach_z);
     if (k >= depths.size() || depths[k] > z_ray + reach_z) continue;  // the beam misses every depth
     // Per-receiver weight w(n): hat 1 − |n|/W, Gaussian W/(√(2π) σ) exp(−n²/2σ²).
     const double inv_width = 1.0 / width;
@@ -56,7 +56,7 @@ void BeamInfluence::add_columns(std::size_t j, double r_hi, const RayPoint& a, c
       const double scale = c * intensity_scale / (col.range_m * abs_q) * attenuation2;
       for (; k < depths.size() && depths[k] <= z_ray + reach_z; ++k) {
         const double w = weight((depths[k] - z_ray) * tr);
-        if (w > 0) intensity[col.index[k]] += scale * w;
+        if (w > 0) intensity[col.first_slot + k] += scale * w;
       }
       continue;
     }
@@ -91,7 +91,7 @@ void BeamInfluence::add_columns(std::size_t j, double r_hi, const RayPoint& a, c
         rotation *= step_rotation;
       }
       const double w = weight(dz * tr);
-      if (w > 0) pressure[col.index[k]] += w * coefficient * phasor;
+      if (w > 0) pressure[col.first_slot + k] += w * coefficient * phasor;
     }
   }
 }

@@ -35,7 +35,8 @@ class BeamInfluence {
   BeamInfluence(const Medium& medium, const ReceiverGrid& receivers, FieldMode mode,
                 BeamShape shape);
 
-  // Adds the segment's contribution to `pressure` (coherent) or `intensity`.
+  // Adds the segment's contribution to `pressure` (coherent) or `intensity`,
+  // both in the grid's slot order (ReceiverColumn::first_slot).
   // Inline up to the test whether the segment spans a receiver column at
   // all: about half the steps of a run do not, and they should cost no call.
   void add(const RayPoint& a, const RayPoint& b, const BeamLaunch& beam,

@@ -48,10 +48,18 @@ ReceiverGrid::ReceiverGrid(const Environment& env) {
     }
     column.uniform_spacing = even_step(column.depth_m);
     if (column.uniform_spacing > 0) column.inverse_spacing = 1.0 / column.uniform_spacing;
+    column.first_slot = slot_outputs_.size();
+    slot_outputs_.insert(slot_outputs_.end(), column.index.begin(), column.index.end());
     ranges_.push_back(range);
     columns_.push_back(std::move(column));
   }
   if (const double step = even_step(ranges_); step > 0) inverse_range_step_ = 1.0 / step;
+  // The columns of a rectilinear grid hold the same sorted depths (unless a
+  // range is listed twice: then that column holds them twice).
+  const bool same_depths = std::all_of(columns_.begin(), columns_.end(), [&](const ReceiverColumn& c) {
+    return c.depth_m == columns_.front().depth_m;
+  });
+  if (!columns_.empty() && same_depths) shared_depths_ = columns_.front().depth_m;
 }
 
 }  // namespace acomms::gram

@@ -30,7 +30,7 @@ constexpr std::size_t kMaxChunks = 8;
 // two threads finish together.
 struct Chunk {
   std::uint32_t first_beam, stride;
-  std::vector<std::complex<double>> pressure;
+  std::vector<std::complex<double>> pressure;  // in the grid's slot order
   std::vector<double> intensity;
 };
 
@@ -77,6 +77,13 @@ TransmissionLoss compute_transmission_loss(const Environment& env, const RunOpti
   };
   unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
   threads = std::clamp<unsigned>(threads, 1, static_cast<unsigned>(chunk_count));
+  // A run of a few thousand ray steps takes about a millisecond: starting a
+  // thread for it costs more than it saves on a busy machine (the thread
+  // may wait a time slice to run). The estimate counts full-range rays at
+  // the longest step; the result does not depend on the choice.
+  constexpr double kStepsWorthAThread = 50'000;
+  const double estimated_steps = static_cast<double>(beams) * std::ceil(medium.box_range() / medium.max_step());
+  if (estimated_steps < kStepsWorthAThread) threads = 1;
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     for (std::size_t i; (i = next.fetch_add(1)) < chunk_count;) run_chunk(chunks[i]);
@@ -92,6 +99,7 @@ TransmissionLoss compute_transmission_loss(const Environment& env, const RunOpti
   result.irregular = env.irregular_receivers();
   result.beam_count = beams;
   result.tl_db.assign(receivers.size(), 0.0);
+  const auto& outputs = receivers.slot_outputs();
   for (std::size_t i = 0; i < receivers.size(); ++i) {
     double power = 0.0;
     if (coherent) {
@@ -101,7 +109,7 @@ TransmissionLoss compute_transmission_loss(const Environment& env, const RunOpti
     } else {
       for (const Chunk& chunk : chunks) power += chunk.intensity[i];
     }
-    result.tl_db[i] = power > 0 ? -10.0 * std::log10(power) : std::numeric_limits<double>::infinity();
+    result.tl_db[outputs[i]] = power > 0 ? -10.0 * std::log10(power) : std::numeric_limits<double>::infinity();
   }
   for (const auto& column : receivers.columns())
     if (column.range_m <= 0)

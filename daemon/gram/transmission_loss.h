@@ -18,7 +18,9 @@
 namespace acomms::gram {
 
 struct RunOptions {
-  unsigned threads = 0;  // 0: the hardware's concurrency
+  // 0: the hardware's concurrency. At most this many; a small run (a few
+  // thousand ray steps) runs on the calling thread alone.
+  unsigned threads = 0;
 };
 
 struct TransmissionLoss {
