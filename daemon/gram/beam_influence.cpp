@@ -18,6 +18,7 @@ void BeamInfluence::add_columns(std::size_t j, double r_hi, const RayPoint& a, c
   const double length = std::sqrt((b.r - a.r) * (b.r - a.r) + (b.z - a.z) * (b.z - a.z));
   const double tr = (b.r - a.r) / length, tz = (b.z - a.z) / length;
   const double inv_dr = 1.0 / (b.r - a.r);
+  const double inv_abs_tr = length / std::abs(b.r - a.r);
   const double omega = medium_.omega();
   const double delta_v = medium_.volume_attenuation_np_per_m();
   const double cos0 = beam.abs_cos_angle;
@@ -39,14 +40,17 @@ void BeamInfluence::add_columns(std::size_t j, double r_hi, const RayPoint& a, c
     const double width = abs_q * beam.spacing_rad;
     const double sigma = hat ? width : std::max(width, wavelength);
     const double reach_n = hat ? width : 4.0 * sigma;
-    const double reach_z = reach_n / std::abs(tr);
+    const double reach_z = reach_n * inv_abs_tr;
     const auto& depths = receivers_.depths(col);
     std::size_t k = receivers_.first_depth_at_or_after(col, z_ray - reach_z);
     if (k >= depths.size() || depths[k] > z_ray + reach_z) continue;  // the beam misses every depth
     // Per-receiver weight w(n): hat 1 − |n|/W, Gaussian W/(√(2π) σ) exp(−n²/2σ²).
     const double inv_width = 1.0 / width;
-    const double gauss_scale = width / (std::sqrt(2.0 * std::numbers::pi) * sigma);
-    const double gauss_exponent = -1.0 / (2 * sigma * sigma);
+    double gauss_scale = 0, gauss_exponent = 0;  // hat beams need neither division
+    if (!hat) {
+      gauss_scale = width / (std::sqrt(2.0 * std::numbers::pi) * sigma);
+      gauss_exponent = -1.0 / (2 * sigma * sigma);
+    }
     auto weight = [&](double n) {
       return hat ? 1.0 - std::abs(n) * inv_width
                  : (std::abs(n) > reach_n ? 0.0 : gauss_scale * std::exp(n * n * gauss_exponent));
