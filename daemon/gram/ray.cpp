@@ -95,6 +95,19 @@ double RayTracer::bottom_offset(const RayPoint& at) const {
   return at.z - medium_.bottom_segments()[segment_].depth_at(at.r);
 }
 
+// Inline: half the steps of a c-linear run end on a node.
+[[gnu::always_inline]] inline void RayTracer::land_on_node(std::size_t node) {
+  // c_z jumps at a c-linear node: p jumps, q is continuous (spec §4.4).
+  RayPoint& y = points_[current_];
+  const auto& ssp = medium_.ssp();
+  const double cz_before = ssp.at(y.z, layer_).cz;
+  layer_ = y.zeta > 0 ? node : node - 1;
+  const double cz_after = ssp.at(y.z, layer_).cz;
+  const double cos_t = y.c * y.xi, sin_t = y.c * y.zeta;
+  if (std::abs(sin_t) < 1e-12) return;  // turning exactly on the node: no crossing
+  y.p -= y.q * (cz_after - cz_before) * cos_t * cos_t / (y.c * y.c * sin_t);
+}
+
 bool RayTracer::next() {
   if (ended_) return false;
   const auto& ssp = medium_.ssp();
@@ -207,17 +220,7 @@ bool RayTracer::next() {
   return true;
 }
 
-void RayTracer::land_on_node(std::size_t node) {
-  // c_z jumps at a c-linear node: p jumps, q is continuous (spec §4.4).
-  RayPoint& y = points_[current_];
-  const auto& ssp = medium_.ssp();
-  const double cz_before = ssp.at(y.z, layer_).cz;
-  layer_ = y.zeta > 0 ? node : node - 1;
-  const double cz_after = ssp.at(y.z, layer_).cz;
-  const double cos_t = y.c * y.xi, sin_t = y.c * y.zeta;
-  if (std::abs(sin_t) < 1e-12) return;  // turning exactly on the node: no crossing
-  y.p -= y.q * (cz_after - cz_before) * cos_t * cos_t / (y.c * y.c * sin_t);
-}
+
 
 void RayTracer::reflect(bool top) {
   RayPoint& y = points_[current_];
