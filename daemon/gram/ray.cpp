@@ -63,7 +63,7 @@ void RayTracer::update_fade() {
   else faded_at_s_ = kInf;
 }
 
-void RayTracer::integrate(const RayPoint& y, const SoundSpeedProfile::Value& at_y, double h,
+[[gnu::always_inline]] inline void RayTracer::integrate(const RayPoint& y, const SoundSpeedProfile::Value& at_y, double h,
                           RayPoint& out) const {
   // Midpoint (RK2) step of (r, z, ξ, ζ, τ, q, p); c_r = 0 (range-independent
   // SSP), so ξ is constant within the step. `at_y` is c and its derivatives
@@ -76,8 +76,18 @@ void RayTracer::integrate(const RayPoint& y, const SoundSpeedProfile::Value& at_
   const double mid_zeta = y.zeta - half * at_y.cz * inv_c1 * inv_c1;
   const double mid_q = y.q + half * at_y.c * y.p;
   const double mid_p = y.p - half * at_y.czz * xi2 * y.q;
-  const SoundSpeedProfile::Value v = medium_.ssp().at(mid_z, layer_);
-  const double inv_c2 = 1.0 / v.c;
+  SoundSpeedProfile::Value v;
+  double inv_c2;
+  if (medium_.ssp().lands_on_nodes()) {
+    // c-linear: c(mid) = c (1 + δ), δ = c_z (mid_z − z)/c = ½ h c_z ζ, known
+    // as soon as h is: 1/c(mid) need not wait for the midpoint's depth.
+    const double stretch = 1.0 + half * at_y.cz * y.zeta;
+    v = {at_y.c * stretch, at_y.cz, 0.0};
+    inv_c2 = inv_c1 / stretch;
+  } else {
+    v = medium_.ssp().at(mid_z, layer_);
+    inv_c2 = 1.0 / v.c;
+  }
   // Field by field: the bounce counts, caustics and ΠR do not change within
   // a step (next() copies them once), and a whole-struct copy here would
   // be redone on every secant try.
