@@ -73,8 +73,9 @@ void RayTracer::update_fade() {
   else faded_at_s_ = kInf;
 }
 
-[[gnu::always_inline]] inline void RayTracer::integrate(const RayPoint& y, const SoundSpeedProfile::Value& at_y, double h,
-                          RayPoint& out) const {
+[[gnu::always_inline]] inline void RayTracer::integrate(const RayPoint& y,
+                                                        const SoundSpeedProfile::Value& at_y, double h,
+                                                        RayPoint& out) const {
   // Midpoint (RK2) step of (r, z, ξ, ζ, τ, q, p); c_r = 0 (range-independent
   // SSP), so ξ is constant within the step. `at_y` is c and its derivatives
   // at y, which every try shares. The slopes: dr = cξ, dz = cζ,
@@ -239,8 +240,6 @@ bool RayTracer::next() {
     ended_ = true;
   return true;
 }
-
-
 
 void RayTracer::reflect(bool top) {
   RayPoint& y = points_[current_];
