@@ -8,10 +8,10 @@
 // receiver's position in the caller's output order; the model accumulates
 // in "slot" order instead (column after column, first_slot + k), so a beam
 // writes to adjacent memory and needs no index lookup, and the sums are
-// moved to output order once at the end (slot_outputs()). Searches run once per
-// ray step (millions of times per run): on evenly spaced ranges or depths
-// the index is computed, then corrected by at most a step or two, so the
-// answer is exactly the binary search's at O(1) cost.
+// moved to output order once at the end (slot_outputs()). Searches run once
+// per ray step (millions of times per run): on evenly spaced ranges or
+// depths the index is computed, then corrected by at most a step or two, so
+// the answer is exactly the binary search's at O(1) cost.
 // Immutable after construction; shared by tracing threads.
 #pragma once
 

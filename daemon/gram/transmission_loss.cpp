@@ -72,7 +72,8 @@ TransmissionLoss compute_transmission_loss(const Environment& env, const RunOpti
         launch.intensity_factor = 2.0 * s * s;  // Lloyd-mirror source pattern (§4.10)
       }
       RayTracer ray(medium, launch.angle_rad);
-      while (ray.next()) influence.add(ray.previous(), ray.point(), launch, chunk.pressure, chunk.intensity);
+      while (ray.next())
+        influence.add(ray.previous(), ray.point(), launch, chunk.pressure, chunk.intensity);
     }
   };
   unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
@@ -82,7 +83,8 @@ TransmissionLoss compute_transmission_loss(const Environment& env, const RunOpti
   // may wait a time slice to run). The estimate counts full-range rays at
   // the longest step; the result does not depend on the choice.
   constexpr double kStepsWorthAThread = 50'000;
-  const double estimated_steps = static_cast<double>(beams) * std::ceil(medium.box_range() / medium.max_step());
+  const double estimated_steps =
+      static_cast<double>(beams) * std::ceil(medium.box_range() / medium.max_step());
   if (estimated_steps < kStepsWorthAThread) threads = 1;
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
