@@ -17,23 +17,20 @@ std::string bin_label(const DepthAdaptationResult& r, std::size_t b) {
   return fixed(r.bin_edges_m[b], 0) + "-" + fixed(r.bin_edges_m[b + 1], 0);
 }
 
-// One honest sentence: who received most, and whether adaptation helped.
+// One honest sentence: who received most, and whether adaptation helped,
+// in the draws and in the model's expectation.
 std::string verdict(const DepthAdaptationResult& r) {
   const StrategyResult& a = r.strategies.back();
   const StrategyResult& f = r.strategies[r.best_fixed];
-  std::string out = r.adaptive_beats_every_fixed ? "adaptation helps here: adaptive receives "
-                                                 : "adaptation does NOT help here: adaptive receives ";
-  out += fixed(a.receipt_overall(), 3) + " against " + fixed(f.receipt_overall(), 3) + " at the best fixed depth (" +
-         f.name + ")";
-  out += r.adaptive_expected_beats_every_fixed ? "; the model's expectation agrees (" : "; expected ";
-  std::size_t best_expected = 0;
+  std::size_t e = 0;
   for (std::size_t s = 0; s + 1 < r.strategies.size(); ++s)
-    if (r.strategies[s].expected_overall > r.strategies[best_expected].expected_overall) best_expected = s;
-  out += fixed(a.expected_overall, 3) + " against " + fixed(r.strategies[best_expected].expected_overall, 3) + " at " +
-         r.strategies[best_expected].name;
-  out += r.adaptive_expected_beats_every_fixed ? ")" : "";
+    if (r.strategies[s].expected_overall > r.strategies[e].expected_overall) e = s;
+  std::string out = r.adaptive_beats_every_fixed ? "adaptation helps here" : "adaptation does NOT help here";
+  out += ": adaptive receives " + fixed(a.receipt_overall(), 3) + " against " + fixed(f.receipt_overall(), 3) +
+         " at the best fixed depth (" + f.name + "); expected " + fixed(a.expected_overall, 4) + " against " +
+         fixed(r.strategies[e].expected_overall, 4) + " (" + r.strategies[e].name + ")";
   if (r.adaptive_beats_every_fixed != r.adaptive_expected_beats_every_fixed)
-    out += " — the draws and the expectation disagree: the difference is within sampling noise (raise --laps)";
+    out += "; the draws and the expectation disagree: the difference is within sampling noise (raise --laps)";
   return out + "\n";
 }
 
