@@ -4,7 +4,7 @@
 // fixed depths 10..90 m against the adaptive strategy.
 // What the model says there, and what these tests hold it to: with SL 190 dB
 // and the noise model at sea state 2 over 4160 Hz (NL 69.9 dB), TL stays
-// below 83 dB out to 3 km at every depth, so SNR > 37 dB: every packet
+// below 80 dB out to 3 km at every depth, so SNR > 40 dB: every packet
 // decodes at every depth and adapting CANNOT help; the command says so.
 // With the margin taken away (NL 106 dB, e.g. a vehicle's self-noise), the
 // link fails beyond 2 km and the adaptive vehicle receives more than every
