@@ -74,7 +74,10 @@ std::string format_depth_adaptation_json(const DepthAdaptationConfig& c, const D
                     ",\"seed\":" + std::to_string(c.seed) + ",\"beam_count\":" + std::to_string(r.beam_count) +
                     ",\"source_level_db\":" + fixed(c.physics.source_level_db, 3) + ",\"noise_level_db\":" +
                     fixed(r.noise_level_db, 3) + ",\"bin_edges_m\":[";
-  for (std::size_t b = 0; b < r.bin_edges_m.size(); ++b) out += (b ? "," : "") + fixed(r.bin_edges_m[b], 3);
+  for (std::size_t b = 0; b < r.bin_edges_m.size(); ++b) {
+    if (b) out += ',';
+    out += fixed(r.bin_edges_m[b], 3);
+  }
   out += "],\"strategies\":[";
   for (std::size_t i = 0; i < r.strategies.size(); ++i) {
     const StrategyResult& s = r.strategies[i];
@@ -83,7 +86,10 @@ std::string format_depth_adaptation_json(const DepthAdaptationConfig& c, const D
     out += s.fixed_depth_m ? "\"fixed_depth_m\":" + fixed(*s.fixed_depth_m, 3) + "," : "\"adaptive\":true,";
     auto list = [&](const char* key, auto value) {
       out += std::string("\"") + key + "\":[";
-      for (std::size_t b = 0; b < s.sent.size(); ++b) out += (b ? "," : "") + value(b);
+      for (std::size_t b = 0; b < s.sent.size(); ++b) {
+        if (b) out += ',';
+        out += value(b);
+      }
       out += "],";
     };
     list("sent", [&](std::size_t b) { return std::to_string(s.sent[b]); });
