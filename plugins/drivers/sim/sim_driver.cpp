@@ -1,5 +1,6 @@
 #include "sim/sim_driver.h"
 
+#include <asio/post.hpp>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>

@@ -24,7 +24,7 @@ double positive_or(double value, double fallback, const std::string& name) {
   return value > 0 ? value : fallback;
 }
 
-gram::LinkPhysics link_physics(const SimPhysicsConfig& c, double frequency_hz) {
+gram::LinkPhysics physics_of(const SimPhysicsConfig& c, double frequency_hz) {
   gram::LinkPhysics physics;
   if (!std::isfinite(c.source_level_db()) || c.source_level_db() < 0 || c.source_level_db() > 300)
     throw bad("source_level_db must be in [0, 300] dB re 1 uPa (0: 190), got " + std::to_string(c.source_level_db()));
@@ -64,7 +64,7 @@ std::shared_ptr<SimPhysics> SimPhysics::create(const SimPhysicsConfig& c, int32_
   } catch (const std::exception& e) {
     throw bad(std::string("env_file: ") + e.what());
   }
-  p->physics_ = link_physics(c, p->environment_.frequency_hz());
+  p->physics_ = physics_of(c, p->environment_.frequency_hz());
   p->max_range_m_ = positive_or(c.max_range_m(), 5000, "max_range_m");
   p->range_step_m_ = positive_or(c.range_step_m(), 10, "range_step_m");
   p->depth_step_m_ = positive_or(c.depth_step_m(), 2, "depth_step_m");

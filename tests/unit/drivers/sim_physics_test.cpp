@@ -8,7 +8,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <asio/executor_work_guard.hpp>
 #include <asio/io_context.hpp>
+#include <asio/post.hpp>
 #include <cmath>
 #include <deque>
 #include <fstream>
@@ -215,6 +217,7 @@ TEST_F(SimPhysicsTest, TheModelNeverRunsOnTheCoreThreadAndTheLinkRunsOnTheOldGri
   const std::uint64_t grids = vehicle.driver.physics()->grids_received();
 
   // The vehicle dives to 80 m; the pool is blocked: nothing it is asked runs.
+  vehicle.received.clear();  // the buoy's ACK
   nav->at.z = -80;
   exchange(buoy, vehicle);
   ASSERT_GE(pool_.waiting(), 1u) << "a new grid was asked for";
