@@ -80,11 +80,14 @@ TEST(DepthAdaptation, DrawsConvergeToTheModelledExpectation) {
   DepthAdaptationConfig c = small_config();
   c.laps = 2000;
   const DepthAdaptationResult r = run_depth_adaptation(small_thermocline(), c);
+  std::size_t uncertain = 0;  // strategies whose packets are neither sure nor hopeless
   for (const StrategyResult& s : r.strategies) {
     const double p = s.expected_overall, n = s.total_sent;
+    uncertain += p > 0.05 && p < 0.95;
     // Within 5 standard errors of a binomial proportion.
     EXPECT_NEAR(s.receipt_overall(), p, 5 * std::sqrt(p * (1 - p) / n) + 1e-12) << s.name;
   }
+  EXPECT_GE(uncertain, 2u) << "the noise level leaves nothing to draw: the test checks nothing";
 }
 
 TEST(DepthAdaptation, SaysSoWhenAdaptingCannotHelp) {
