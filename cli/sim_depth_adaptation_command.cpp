@@ -16,7 +16,7 @@ namespace acomms::cli {
 namespace {
 
 struct DepthAdaptationOptions {
-  std::string env, png;
+  std::string env, png, model_env;
   eval::DepthAdaptationConfig config;
   double source_level_db = gram::kDefaultSourceLevelDb;
   std::optional<double> noise_level_db;
@@ -48,7 +48,16 @@ void run(DepthAdaptationOptions& o, const GlobalOptions& global) {
   if (auto problem = gram::validate_reception_curve(curve, "--")) throw CLI::ValidationError("--snr50", *problem);
   config.physics.curves[config.rate] = curve;
 
-  const eval::DepthAdaptationResult result = eval::run_depth_adaptation(imported.environment, config);
+  std::optional<gram::Environment> model;
+  if (!o.model_env.empty()) {
+    try {
+      model = gram::import_bellhop_env_file(o.model_env).environment;
+    } catch (const std::exception& e) {
+      throw CLI::ValidationError("--model-env", e.what());
+    }
+  }
+  const eval::DepthAdaptationResult result =
+      eval::run_depth_adaptation(imported.environment, config, model ? &*model : nullptr);
   if (!o.png.empty()) write_depth_adaptation_png(o.png, result);
   std::cout << (global.json ? eval::format_depth_adaptation_json(config, result)
                             : eval::format_depth_adaptation_table(config, result))
@@ -69,6 +78,10 @@ void add_sim_depth_adaptation_command(CLI::App* sim, const GlobalOptions& global
       "helped. Deterministic (seeded)");
   command->add_option("--env", o.env, "BELLHOP-format environment (its receiver grid is replaced)")
       ->required()
+      ->type_name("FILE.env");
+  command->add_option("--model-env", o.model_env,
+                      "The environment the adaptive vehicle believes, when it differs from the water (default: "
+                      "the water itself, a perfect model)")
       ->type_name("FILE.env");
   command->add_option("--png", o.png, "Also draw receipt probability against range, one colour per strategy")
       ->type_name("FILE");

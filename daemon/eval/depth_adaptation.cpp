@@ -135,10 +135,19 @@ std::vector<double> adaptive_depths(const gram::TransmissionLoss& tl, const gram
 
 }  // namespace
 
-DepthAdaptationResult run_depth_adaptation(const gram::Environment& file_env, const DepthAdaptationConfig& c) {
+DepthAdaptationResult run_depth_adaptation(const gram::Environment& file_env, const DepthAdaptationConfig& c,
+                                           const gram::Environment* vehicle_model) {
   validate(file_env, c);
+  if (vehicle_model) validate(*vehicle_model, c);
   const gram::Environment env = model_environment(file_env, c);
   const gram::TransmissionLoss tl = gram::compute_transmission_loss(env, {c.threads});
+  // The vehicle decides on its own model when it has one, the water decides.
+  std::optional<gram::Environment> believed;
+  std::optional<gram::TransmissionLoss> believed_tl;
+  if (vehicle_model) {
+    believed = model_environment(*vehicle_model, c);
+    believed_tl = gram::compute_transmission_loss(*believed, {c.threads});
+  }
 
   DepthAdaptationResult out;
   out.beam_count = tl.beam_count;
@@ -165,7 +174,9 @@ DepthAdaptationResult run_depth_adaptation(const gram::Environment& file_env, co
     std::snprintf(name, sizeof name, "%g m", z);
     out.strategies.push_back({name, z, {}, {}, {}});
   }
-  depth_of.push_back(adaptive_depths(tl, env, c, run, packets, out.adaptive_path));
+  depth_of.push_back(believed ? adaptive_depths(*believed_tl, *believed, c, run, packets, out.adaptive_path)
+                              : adaptive_depths(tl, env, c, run, packets, out.adaptive_path));
+  out.separate_model = believed.has_value();
   out.strategies.push_back({"adaptive", std::nullopt, {}, {}, {}});
 
   // One uniform number per packet and lap, shared by every strategy.

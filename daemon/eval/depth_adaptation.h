@@ -18,9 +18,10 @@
 // and heading: Θ = 0 going out, 180° coming back) and moves toward it at
 // most vertical_speed_mps; with no depth predicted to receive it keeps its
 // last target.
-// The adaptive vehicle's model is the water itself (the same TL grid):
-// this measures what adaptation can give with a perfect model; a real one
-// gives less.
+// The adaptive vehicle's model is the water itself (the same TL grid)
+// unless a separate vehicle model is given (another environment: the
+// profile the vehicle believes, a guessed bottom): without one this
+// measures what adaptation can give with a perfect model.
 // Determinism: each lap draws one uniform number per packet from a seeded
 // generator, and every strategy uses the SAME numbers (common random
 // numbers), so strategies differ only by their physics; the expected
@@ -91,11 +92,15 @@ struct DepthAdaptationResult {
   bool adaptive_beats_every_fixed = false;
   bool adaptive_expected_beats_every_fixed = false;
   std::size_t best_fixed = 0;  // index of the fixed depth receiving most (draws)
+  bool separate_model = false;  // the vehicle decided on its own model
 };
 
 // Throws std::invalid_argument naming the field and bound (config, or an
 // environment the model refuses).
-DepthAdaptationResult run_depth_adaptation(const gram::Environment& env, const DepthAdaptationConfig& config);
+// `vehicle_model`: the environment the adaptive vehicle believes (null: the
+// water itself); its grid is built the same way.
+DepthAdaptationResult run_depth_adaptation(const gram::Environment& env, const DepthAdaptationConfig& config,
+                                           const gram::Environment* vehicle_model = nullptr);
 
 // The per-bin table (one row per strategy) and the verdict, for people.
 std::string format_depth_adaptation_table(const DepthAdaptationConfig& config, const DepthAdaptationResult& result);

@@ -44,7 +44,8 @@ std::string format_depth_adaptation_table(const DepthAdaptationConfig& c, const 
   out += "model: " + std::to_string(r.beam_count) + " beams, " + std::to_string(r.model_ranges) + " ranges x " +
          std::to_string(r.model_depths) + " depths; SL " + fixed(c.physics.source_level_db, 1) + " dB, NL " +
          fixed(r.noise_level_db, 1) + " dB; adaptive: tau_a " + fixed(c.horizon_s, 0) + " s, H_max " +
-         fixed(c.h_max_db, 0) + " dB, at most " + fixed(c.vertical_speed_mps, 2) + " m/s vertically\n";
+         fixed(c.h_max_db, 0) + " dB, at most " + fixed(c.vertical_speed_mps, 2) + " m/s vertically, deciding on " +
+         (r.separate_model ? "its own model" : "the water itself (a perfect model)") + "\n";
   out += "receipt probability per range bin (m)\n";
   char cell[64];
   std::snprintf(cell, sizeof cell, "%-10s", "strategy");
@@ -103,7 +104,8 @@ std::string format_depth_adaptation_json(const DepthAdaptationConfig& c, const D
   out += r.adaptive_beats_every_fixed ? "true" : "false";
   out += ",\"adaptive_expected_beats_every_fixed\":";
   out += r.adaptive_expected_beats_every_fixed ? "true" : "false";
-  out += ",\"best_fixed\":\"" + r.strategies[r.best_fixed].name + "\"}\n";
+  out += ",\"best_fixed\":\"" + r.strategies[r.best_fixed].name + "\",\"separate_model\":";
+  out += r.separate_model ? "true}\n" : "false}\n";
   return out;
 }
 

@@ -103,6 +103,26 @@ TEST(DepthAdaptation, SaysSoWhenAdaptingCannotHelp) {
   EXPECT_NE(table.find("adaptation does NOT help here"), std::string::npos) << table;
 }
 
+TEST(DepthAdaptation, AVehicleModelEqualToTheWaterDecidesAsTheWaterAndAWrongOneDecidesOtherwise) {
+  const DepthAdaptationConfig c = small_config();
+  const gram::Environment water = small_thermocline();
+  const DepthAdaptationResult perfect = run_depth_adaptation(water, c);
+  const DepthAdaptationResult same = run_depth_adaptation(water, c, &water);
+  EXPECT_TRUE(same.separate_model);
+  EXPECT_FALSE(perfect.separate_model);
+  EXPECT_EQ(same.strategies.back().received, perfect.strategies.back().received);
+  // A vehicle that believes the water is isovelocity (no thermocline).
+  gram::Environment believed = water;
+  for (auto& p : *believed.mutable_sound_speed()) p.set_speed_mps(1511.0);
+  const DepthAdaptationResult wrong = run_depth_adaptation(water, c, &believed);
+  bool differs = false;
+  for (std::size_t i = 0; i < wrong.adaptive_path.size(); ++i)
+    differs = differs || wrong.adaptive_path[i].target_m != perfect.adaptive_path[i].target_m;
+  EXPECT_TRUE(differs) << "the believed profile changed no decision";
+  // Fixed depths do not depend on what the vehicle believes.
+  EXPECT_EQ(wrong.strategies[0].received, perfect.strategies[0].received);
+}
+
 TEST(DepthAdaptation, ErrorsNameTheFieldAndTheBound) {
   DepthAdaptationConfig c = small_config();
   c.fixed_depths_m = {10, 150};
