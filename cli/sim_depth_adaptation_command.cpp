@@ -25,6 +25,29 @@ struct DepthAdaptationOptions {
   double slope_per_db = gram::kDefaultSlopePerDb;
 };
 
+// The evaluation names its config fields; a user of this command typed flags.
+std::string in_flag_words(std::string message) {
+  static const std::pair<const char*, const char*> kFlags[] = {
+      {"fixed_depths_m", "--depths"},       {"buoy_depth_m", "--buoy-depth"},
+      {"start_depth_m", "--start-depth"},   {"start_range_m", "--start-range"},
+      {"max_range_m", "--max-range"},       {"speed_mps", "--speed"},
+      {"send_interval_s", "--interval"},    {"vertical_speed_mps", "--vertical-speed"},
+      {"horizon_s", "--tau-a"},             {"h_max_db", "--h-max"},
+      {"bin_m", "--bin"},                   {"range_step_m", "--range-step"},
+      {"depth_step_m", "--depth-step"},     {"laps", "--laps"},
+      {"source_level_db", "--source-level"}, {"noise_level_db", "--noise-level"},
+      {"sea_state", "--sea-state"},         {"band_hz", "--band"},
+      {"shipping", "--shipping"},           {"limits.min_depth_m", "--min-depth"},
+      {"limits.max_depth_m", "--max-depth"}, {"limits.min_altitude_m", "--min-altitude"},
+      {"min_depth_m", "--min-depth"},       {"max_depth_m", "--max-depth"},
+      {"min_altitude_m", "--min-altitude"}};
+  for (const auto& [field, flag] : kFlags) {
+    const std::string name = field;
+    if (message.rfind(name + " ", 0) == 0) return flag + message.substr(name.size());
+  }
+  return message;
+}
+
 void run(DepthAdaptationOptions& o, const GlobalOptions& global) {
   gram::ImportedEnvironment imported;
   try {
@@ -40,12 +63,15 @@ void run(DepthAdaptationOptions& o, const GlobalOptions& global) {
   } else {
     gram::NoiseModelInput noise = o.noise;
     noise.centre_hz = imported.environment.frequency_hz();
-    config.physics.noise_level_db = gram::modelled_noise_level_db(noise, "--");
+    config.physics.noise_level_db = gram::modelled_noise_level_db(noise);
   }
   gram::ReceptionCurve curve = gram::default_reception_curve(config.rate);
   if (o.snr50_db) curve.snr50_db = *o.snr50_db;
   curve.slope_per_db = o.slope_per_db;
-  if (auto problem = gram::validate_reception_curve(curve, "--")) throw CLI::ValidationError("--snr50", *problem);
+  if (auto problem = gram::validate_reception_curve(curve, "")) {
+    const bool slope = problem->rfind("slope_per_db", 0) == 0;
+    throw CLI::ValidationError(slope ? "--slope" : "--snr50", *problem);
+  }
   config.physics.curves[config.rate] = curve;
 
   std::optional<gram::Environment> model;
@@ -132,7 +158,7 @@ void add_sim_depth_adaptation_command(CLI::App* sim, const GlobalOptions& global
     try {
       run(o, global);
     } catch (const std::invalid_argument& e) {
-      throw CLI::ValidationError("sim depth-adaptation", e.what());
+      throw CLI::ValidationError("sim depth-adaptation", in_flag_words(e.what()));
     }
   });
 }

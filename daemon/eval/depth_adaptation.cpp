@@ -40,6 +40,9 @@ void validate(const gram::Environment& env, const DepthAdaptationConfig& c) {
   inside("start_depth_m", c.start_depth_m);
   if (c.fixed_depths_m.empty()) throw std::invalid_argument("fixed_depths_m: give at least one fixed depth");
   for (double z : c.fixed_depths_m) inside("fixed_depths_m", z);
+  gram::VehicleLimits limits = c.limits;
+  if (limits.max_depth_m <= 0) limits.max_depth_m = bottom;  // 0: the bottom (less the altitude) limits
+  check(gram::validate_limits(limits));
   check(require_greater("start_range_m", c.start_range_m, 0));
   check(require_greater("max_range_m", c.max_range_m, c.start_range_m));
   if (c.max_range_m > 200000) throw std::invalid_argument("max_range_m must be at most 200000 m");

@@ -100,4 +100,18 @@ TEST(DepthAdaptationCli, AnEnvironmentThatDoesNotExistIsNamed) {
   EXPECT_NE(result.err.find("/nonexistent/x.env"), std::string::npos) << result.err;
 }
 
+TEST(DepthAdaptationCli, BadOptionsAreNamedByTheirFlags) {
+  auto error_of = [](const std::vector<std::string>& extra, const std::string& name) {
+    std::vector<std::string> args = {"sim", "depth-adaptation", "--env", kGlint10};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto result = acomms::testing::run(ACOMMSCTL_BINARY, args, log_prefix(name));
+    EXPECT_NE(result.exit_code, 0) << name;
+    return result.err;
+  };
+  EXPECT_NE(error_of({"--depths", "10,200"}, "depths").find("--depths = 200 must lie in the water column (0, 110) m"),
+            std::string::npos);
+  EXPECT_NE(error_of({"--sea-state", "9"}, "sea_state").find("--sea-state must be in 0..6, got 9"), std::string::npos);
+  EXPECT_NE(error_of({"--min-depth", "-1"}, "min_depth").find("--min-depth"), std::string::npos);
+}
+
 }  // namespace
