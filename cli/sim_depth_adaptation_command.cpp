@@ -20,7 +20,8 @@ struct DepthAdaptationOptions {
   eval::DepthAdaptationConfig config;
   double source_level_db = gram::kDefaultSourceLevelDb;
   std::optional<double> noise_level_db;
-  gram::NoiseModelInput noise;  // centre_hz 0: the environment's frequency
+  gram::NoiseModelInput noise;  // centre: the environment's frequency
+  std::optional<double> band_hz;  // unset: gram::default_band_hz
   std::optional<double> snr50_db;
   double slope_per_db = gram::kDefaultSlopePerDb;
 };
@@ -63,6 +64,7 @@ void run(DepthAdaptationOptions& o, const GlobalOptions& global) {
   } else {
     gram::NoiseModelInput noise = o.noise;
     noise.centre_hz = imported.environment.frequency_hz();
+    noise.band_hz = o.band_hz ? *o.band_hz : gram::default_band_hz(noise.centre_hz);
     config.physics.noise_level_db = gram::modelled_noise_level_db(noise);
   }
   gram::ReceptionCurve curve = gram::default_reception_curve(config.rate);
@@ -148,8 +150,9 @@ void add_sim_depth_adaptation_command(CLI::App* sim, const GlobalOptions& global
                       "NL in the band, dB re 1 uPa (default: the noise model with --sea-state and --band)");
   command->add_option("--sea-state", o.noise.sea_state, "Sea state for the noise model's wind (0..6)")
       ->capture_default_str();
-  command->add_option("--band", o.noise.band_hz, "Receiver band around the environment's frequency, Hz")
-      ->capture_default_str();
+  command->add_option("--band", o.band_hz,
+                      "Receiver band around the environment's frequency, Hz (default: 4160 Hz at 25 kHz, the same "
+                      "fraction of any other frequency)");
   command->add_option("--shipping", o.noise.shipping, "Shipping activity for the noise model, 0..1")
       ->capture_default_str();
   command->add_option("--snr50", o.snr50_db, "SNR (dB) at which half the packets decode (default: 10 rate 0, 14 PSK)");

@@ -25,6 +25,8 @@ double modelled_noise_level_db(const NoiseModelInput& in, const std::string& pre
   return ambient_noise_band_level(lo_khz, hi_khz, in.shipping, *wind);
 }
 
+double default_band_hz(double centre_hz) { return 4160.0 * centre_hz / 25000.0; }
+
 const ReceptionCurve& LinkPhysics::curve(std::int32_t rate) const {
   if (rate < 0) rate = 0;
   if (auto it = curves.find(rate); it != curves.end()) return it->second;

@@ -28,6 +28,11 @@ struct NoiseModelInput {
   double shipping = 0.5;  // [0, 1]
 };
 
+// The band when none is given: the Micro-Modem's 4160 Hz at its 25 kHz
+// carrier, and the same fraction (16.64%) of any other carrier, so that a
+// 500 Hz environment gets a 83.2 Hz band rather than an impossible one.
+double default_band_hz(double centre_hz);
+
 // NL (dB re 1 µPa) of the noise model. Throws std::invalid_argument naming
 // the bad field (`prefix` + sea_state / centre_hz / band_hz / shipping).
 double modelled_noise_level_db(const NoiseModelInput& input, const std::string& prefix = "");

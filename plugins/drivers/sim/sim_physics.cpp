@@ -38,7 +38,7 @@ gram::LinkPhysics physics_of(const SimPhysicsConfig& c, double frequency_hz) {
     noise.centre_hz = frequency_hz;
     const SimNoiseModel& m = c.noise_model();
     if (m.has_sea_state()) noise.sea_state = static_cast<int>(std::min<uint32_t>(m.sea_state(), 1000));
-    noise.band_hz = positive_or(m.band_hz(), noise.band_hz, "noise_model.band_hz");
+    noise.band_hz = positive_or(m.band_hz(), gram::default_band_hz(frequency_hz), "noise_model.band_hz");
     if (m.has_shipping()) noise.shipping = m.shipping();
     physics.noise_level_db = gram::modelled_noise_level_db(noise, "driver.sim.physics.noise_model.");
   }

@@ -59,6 +59,15 @@ TEST(LinkPhysics, NoiseModelIsTheBandLevelAroundTheCarrier) {
   }
 }
 
+TEST(LinkPhysics, DefaultBandIsTheMicroModemsFractionOfTheCarrier) {
+  EXPECT_DOUBLE_EQ(default_band_hz(25000), 4160);
+  EXPECT_DOUBLE_EQ(default_band_hz(500), 83.2);
+  NoiseModelInput low;
+  low.centre_hz = 500;
+  low.band_hz = default_band_hz(500);
+  EXPECT_TRUE(std::isfinite(modelled_noise_level_db(low)));
+}
+
 TEST(LinkPhysics, SnrIsSourceLevelLessLossLessNoise) {
   LinkPhysics p;
   p.noise_level_db = 70;
