@@ -140,7 +140,10 @@ void add_sim_depth_adaptation_command(CLI::App* sim, const GlobalOptions& global
       ->capture_default_str();
   command->add_option("--bin", c.bin_m, "Range bin of the report, m")->capture_default_str();
   command->add_option("--range-step", c.range_step_m, "The model's receiver range spacing, m")->capture_default_str();
-  command->add_option("--depth-step", c.depth_step_m, "The model's receiver depth spacing, m")->capture_default_str();
+  command->add_option("--depth-step", c.depth_step_m,
+                      "The model's receiver depth spacing, m (0: 2 m, or a hundredth of the water column where "
+                      "coarser)")
+      ->capture_default_str();
   command->add_option("--laps", c.laps, "Runs out and back, each with fresh draws")->capture_default_str();
   command->add_option("--seed", c.seed, "Random seed (same seed, same output)")->capture_default_str();
   command->add_option("--threads", c.threads, "Model threads (0: all cores); the result is the same")

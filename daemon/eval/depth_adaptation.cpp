@@ -19,6 +19,7 @@ namespace {
 // "More" in expectation means more by a tenth of a percentage point: a
 // strategy whose packets already decode with p = 1 − 1e-9 does not "help".
 constexpr double kExpectationTie = 1e-3;
+using gram::require_at_least;
 using gram::require_greater;
 
 void check(std::optional<std::string> problem) {
@@ -27,6 +28,10 @@ void check(std::optional<std::string> problem) {
 
 double surface_of(const gram::Environment& env) { return env.sound_speed(0).depth_m(); }
 double bottom_of(const gram::Environment& env) { return env.sound_speed(env.sound_speed_size() - 1).depth_m(); }
+
+double depth_step(const gram::Environment& env, const DepthAdaptationConfig& c) {
+  return c.depth_step_m > 0 ? c.depth_step_m : gram::default_depth_step_m(bottom_of(env) - surface_of(env));
+}
 
 void validate(const gram::Environment& env, const DepthAdaptationConfig& c) {
   if (env.sound_speed_size() < 2) throw std::invalid_argument("the environment has no sound speed profile");
@@ -53,7 +58,7 @@ void validate(const gram::Environment& env, const DepthAdaptationConfig& c) {
   check(require_greater("h_max_db", c.h_max_db, 0));
   check(require_greater("bin_m", c.bin_m, 0));
   check(require_greater("range_step_m", c.range_step_m, 0));
-  check(require_greater("depth_step_m", c.depth_step_m, 0));
+  check(require_at_least("depth_step_m", c.depth_step_m, 0));
   check(gram::require_finite("source_level_db", c.physics.source_level_db));
   check(gram::require_finite("noise_level_db", c.physics.noise_level_db));
   if (c.laps < 1 || c.laps > 100000) throw std::invalid_argument("laps must be in 1..100000");
@@ -61,7 +66,8 @@ void validate(const gram::Environment& env, const DepthAdaptationConfig& c) {
   if (duration / c.send_interval_s > 1e6) throw std::invalid_argument("more than 1e6 packets per lap: raise send_interval_s");
   if ((c.max_range_m + c.speed_mps * c.horizon_s) / c.range_step_m > 20000)
     throw std::invalid_argument("range_step_m is too fine: more than 20000 model ranges");
-  if ((bottom - top) / c.depth_step_m > 2000) throw std::invalid_argument("depth_step_m is too fine: more than 2000 model depths");
+  if ((bottom - top) / depth_step(env, c) > 2000)
+    throw std::invalid_argument("depth_step_m is too fine: more than 2000 model depths");
 }
 
 // The environment with the buoy as the source and the experiment's grid.
@@ -71,8 +77,9 @@ gram::Environment model_environment(gram::Environment env, const DepthAdaptation
   env.clear_receiver_depth_m();
   env.clear_receiver_range_m();
   const double top = surface_of(env), bottom = bottom_of(env);
-  const auto nz = static_cast<std::size_t>(std::ceil((bottom - top) / c.depth_step_m - 1e-9));
-  for (std::size_t i = 0; i <= nz; ++i) env.add_receiver_depth_m(std::min(bottom, top + i * c.depth_step_m));
+  const double dz = depth_step(env, c);
+  const auto nz = static_cast<std::size_t>(std::ceil((bottom - top) / dz - 1e-9));
+  for (std::size_t i = 0; i <= nz; ++i) env.add_receiver_depth_m(std::min(bottom, top + i * dz));
   // Out to the farthest range window the vehicle will ask about.
   const double r_end = c.max_range_m + c.speed_mps * c.horizon_s + c.range_step_m;
   const auto nr = static_cast<std::size_t>(std::ceil(r_end / c.range_step_m));

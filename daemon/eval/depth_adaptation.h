@@ -56,7 +56,7 @@ struct DepthAdaptationConfig {
   double bin_m = 400;  // range bins of the report (the thesis's Fig. 4.7d)
   // The model's receiver grid (the environment file's grid is replaced).
   double range_step_m = 10;
-  double depth_step_m = 2;
+  double depth_step_m = 0;  // 0: gram::default_depth_step_m (2 m in shallow water)
   std::uint32_t laps = 20;  // repetitions of the run, each with fresh draws
   std::uint64_t seed = 1;
   gram::LinkPhysics physics;  // SL, NL and the reception curves

@@ -1,5 +1,6 @@
 #include "gram/link_physics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -26,6 +27,8 @@ double modelled_noise_level_db(const NoiseModelInput& in, const std::string& pre
 }
 
 double default_band_hz(double centre_hz) { return 4160.0 * centre_hz / 25000.0; }
+
+double default_depth_step_m(double water_depth_m) { return std::max(2.0, water_depth_m / 100.0); }
 
 const ReceptionCurve& LinkPhysics::curve(std::int32_t rate) const {
   if (rate < 0) rate = 0;

@@ -33,6 +33,12 @@ struct NoiseModelInput {
 // 500 Hz environment gets a 83.2 Hz band rather than an impossible one.
 double default_band_hz(double centre_hz);
 
+// The depth spacing of a link model's receiver grid when none is given:
+// 2 m, or a hundredth of the water column where that is coarser (deep
+// water: 50 m in 5000 m), so that any environment gets a grid of at most
+// about a hundred depths.
+double default_depth_step_m(double water_depth_m);
+
 // NL (dB re 1 µPa) of the noise model. Throws std::invalid_argument naming
 // the bad field (`prefix` + sea_state / centre_hz / band_hz / shipping).
 double modelled_noise_level_db(const NoiseModelInput& input, const std::string& prefix = "");

@@ -67,12 +67,12 @@ std::shared_ptr<SimPhysics> SimPhysics::create(const SimPhysicsConfig& c, int32_
   p->physics_ = physics_of(c, p->environment_.frequency_hz());
   p->max_range_m_ = positive_or(c.max_range_m(), 5000, "max_range_m");
   p->range_step_m_ = positive_or(c.range_step_m(), 10, "range_step_m");
-  p->depth_step_m_ = positive_or(c.depth_step_m(), 2, "depth_step_m");
   p->depth_tolerance_m_ = positive_or(c.depth_tolerance_m(), 1, "depth_tolerance_m");
   if (p->max_range_m_ / p->range_step_m_ > 20000) throw bad("range_step_m is too fine: more than 20000 grid ranges");
   p->top_m_ = p->environment_.sound_speed(0).depth_m();
   p->bottom_m_ = p->environment_.sound_speed(p->environment_.sound_speed_size() - 1).depth_m();
   if (p->bottom_m_ - p->top_m_ <= 2 * kBoundaryClearance) throw bad("env_file: the water is too shallow to model");
+  p->depth_step_m_ = positive_or(c.depth_step_m(), gram::default_depth_step_m(p->bottom_m_ - p->top_m_), "depth_step_m");
   if ((p->bottom_m_ - p->top_m_) / p->depth_step_m_ > 2000) throw bad("depth_step_m is too fine: more than 2000 grid depths");
   // The receiver grid, once: only the source depth changes between runs.
   gram::Environment& env = p->environment_;

@@ -68,6 +68,11 @@ TEST(LinkPhysics, DefaultBandIsTheMicroModemsFractionOfTheCarrier) {
   EXPECT_TRUE(std::isfinite(modelled_noise_level_db(low)));
 }
 
+TEST(LinkPhysics, DefaultDepthStepIsTwoMetresOrAHundredthOfDeepWater) {
+  EXPECT_EQ(default_depth_step_m(110), 2.0);
+  EXPECT_EQ(default_depth_step_m(5000), 50.0);
+}
+
 TEST(LinkPhysics, SnrIsSourceLevelLessLossLessNoise) {
   LinkPhysics p;
   p.noise_level_db = 70;
