@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 
@@ -98,6 +99,20 @@ TEST(DepthAdaptationCli, AnEnvironmentThatDoesNotExistIsNamed) {
       acomms::testing::run(ACOMMSCTL_BINARY, {"sim", "depth-adaptation", "--env", "/nonexistent/x.env"}, log_prefix("missing"));
   EXPECT_NE(result.exit_code, 0);
   EXPECT_NE(result.err.find("/nonexistent/x.env"), std::string::npos) << result.err;
+}
+
+TEST(DepthAdaptationCli, WorksOnADeepLowFrequencyEnvironmentAUserBrings) {
+  // 1000 m of isovelocity water at 500 Hz: another depth, another
+  // frequency; the noise band and the grid follow them.
+  const std::string env = ::testing::TempDir() + "deep_" + std::to_string(getpid()) + ".env";
+  std::ofstream(env) << "'deep isovelocity 500 Hz'\n500\n1\n'CVW'\n0 0.0 1000\n0 1500 /\n1000 1500 /\n"
+                     << "'A' 0.0\n1000 1600 0 1.5 0.5 0 /\n1\n30 /\n1\n50 /\n1\n1 /\n'I'\n0\n-80 80 /\n0 1001 3.5\n";
+  const auto result = acomms::testing::run(ACOMMSCTL_BINARY, {"sim", "depth-adaptation", "--env", env, "--laps", "2"},
+                                           log_prefix("deep"));
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("101 depths"), std::string::npos) << result.out;  // every 10 m
+  EXPECT_NE(result.out.find("adaptation "), std::string::npos) << result.out;
+  std::filesystem::remove(env);
 }
 
 TEST(DepthAdaptationCli, BadOptionsAreNamedByTheirFlags) {
