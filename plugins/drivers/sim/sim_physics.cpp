@@ -105,6 +105,7 @@ void SimPhysics::follow(const SimPosition& own) {
   if (!source_ || pending_depth_m_) return;  // one run at a time; re-checked on its answer
   const double depth = model_depth(own);
   if (grid_ && std::abs(depth - grid_depth_m_) <= depth_tolerance_m_) return;
+  if (failed_depth_m_ && std::abs(depth - *failed_depth_m_) <= depth_tolerance_m_) return;
   ask_grid(depth);
 }
 
@@ -123,10 +124,13 @@ void SimPhysics::on_grid(double depth_m, ModelAnswer answer) {
   ACOMMS_ASSERT_CORE_THREAD();
   pending_depth_m_.reset();
   if (!answer.tl) {
-    // Keep the last grid; asking again at once would fail the same way.
+    // Keep the last grid, and do not ask for this depth again: it would
+    // fail the same way, on every packet.
     spdlog::error("sim modem {}: the model failed for depth {:.1f} m: {}", own_id_, depth_m, answer.error);
+    failed_depth_m_ = depth_m;
     return;
   }
+  failed_depth_m_.reset();
   grid_ = std::move(answer.tl);
   grid_depth_m_ = depth_m;
   ++grids_received_;

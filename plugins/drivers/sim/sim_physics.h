@@ -79,6 +79,7 @@ class SimPhysics : public std::enable_shared_from_this<SimPhysics> {
   std::shared_ptr<const gram::TransmissionLoss> grid_;
   double grid_depth_m_ = 0;
   std::optional<double> pending_depth_m_;
+  std::optional<double> failed_depth_m_;  // the model refused it: not asked again
   std::optional<SimPosition> last_own_;  // re-checked when an answer arrives
   uint64_t grids_received_ = 0;
   std::map<int32_t, Spread> spreads_;
