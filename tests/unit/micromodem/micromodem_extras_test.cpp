@@ -281,6 +281,26 @@ TEST_F(MicroModemExtrasTest, FdpToAnUnlistedMm1GoesOutButIsNeverAcknowledged) {
   EXPECT_EQ(b_->written.find("$CCTDP"), std::string::npos);  // nothing to acknowledge
 }
 
+TEST_F(MicroModemExtrasTest, FdpIsNotDecodedByAnMm2WithTheLegacyHeaderVersion) {
+  two_nodes();  // neither sets psk.packet.mod_hdr_version 1
+  a_->config.mutable_micromodem()->add_cfg("psk.packet.mod_hdr_version,1");
+  a_->driver = std::make_unique<MicroModemDriver>(a_->config, scheduler_,
+                                                  std::make_unique<FakeModemPort>(a_->modem, scheduler_, &a_->written));
+  a_->start();
+  run(8s);
+  ASSERT_TRUE(a_->driver->ready());
+  MicroModemTransmission ask = kind(MicroModemTransmission::FDP);
+  ask.set_fdp_data("hi");
+  uint64_t heard_before = b_->driver->reception_counters().packets;
+  DriverSpecificResult result = send(request(2, ask));
+  ASSERT_EQ(result.status, DriverSpecificStatus::kOk) << result.error;
+  EXPECT_FALSE(result.transmission.GetExtension(drivers::micromodem_transmission).fdp_acknowledged());
+  // §6, §8.6: heard (its $CACST counted) but undecodable: no $CARDP, nothing reported.
+  EXPECT_EQ(b_->driver->reception_counters().packets, heard_before + 1);
+  EXPECT_EQ(b_->driver->driver_specific_counters().fdp_received, 0u);
+  EXPECT_TRUE(b_->received_driver_specific().empty());
+}
+
 TEST_F(MicroModemExtrasTest, FdpOnAnMm1IsRefusedAtOnceSayingItNeedsAnMm2) {
   two_nodes(Generation::kMM1, Generation::kMM2);
   MicroModemTransmission ask = kind(MicroModemTransmission::FDP);
