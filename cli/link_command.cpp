@@ -10,6 +10,7 @@
 
 #include "api_client.h"
 #include "global_options.h"
+#include "link_extra_command.h"
 #include "link_raw_command.h"
 #include "output.h"
 #include "rpc_error.h"
@@ -164,6 +165,7 @@ void add_link_command(CLI::App& app, const GlobalOptions& global) {
   status->callback([&global] { run_status(global); });
 
   add_link_raw_command(*link, global);
+  add_link_extra_commands(*link, global);
 
   CLI::App* cycle = link->add_subcommand("cycle", "Replace the MAC's TDMA cycle of slots");
   cycle->add_option("SLOT", cycle_options.slots,

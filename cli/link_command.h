@@ -1,6 +1,7 @@
 #pragma once
-// `acommsctl link status|cycle|raw`: the modem driver, the MAC's slot cycle,
-// and the raw link log (link_raw_command.h).
+// `acommsctl link status|cycle|raw|ping|lbl|mini`: the modem driver, the MAC's
+// slot cycle, the raw link log (link_raw_command.h) and the Micro-Modem's own
+// transmissions (link_extra_command.h).
 
 #include <CLI/CLI.hpp>
 

@@ -125,7 +125,8 @@ void run_sub(const GlobalOptions& global, const SubOptions& options) {
   while (reader->Read(&received)) {
     // A pipe to another program is read line by line as messages arrive.
     std::cout << line_for(received) << std::endl;
-    if (cursor) cursor->save(received.seq());
+    // seq 0: a driver-specific reception (a mini-packet), never stored: no place to resume from.
+    if (cursor && received.seq() != 0) cursor->save(received.seq());
   }
   grpc::Status status = reader->Finish();
   if (stop.stopped()) return;

@@ -154,7 +154,11 @@ void Daemon::build_link() {
           subscribers_.publish(*received);
         });
       },
-      link::LinkOptions::from_config(config_.mac(), scheduler_->clock()));
+      [this] {
+        link::LinkOptions options = link::LinkOptions::from_config(config_.mac(), scheduler_->clock());
+        options.scheduler = scheduler_.get();  // deadlines of driver-specific requests
+        return options;
+      }());
   // A serial modem's sentences, kept for debugging (link/raw_log.h). The
   // simulator's and udp's binary datagrams are not worth the disk.
   if (name == "micromodem") {

@@ -28,4 +28,14 @@ std::chrono::nanoseconds Driver::ack_time(int32_t) const { return with_margin(kT
 
 double Driver::sound_speed() const { return kNominalSoundSpeed; }
 
+DriverSpecificResult Driver::check_driver_specific(const v1::ModemTransmission& request) const {
+  return driver_specific_error(DriverSpecificStatus::kUnimplemented,
+                               "does not support the driver-specific request " + describe_driver_specific(request),
+                               request);
+}
+
+void Driver::send_driver_specific(const v1::ModemTransmission& request, double, DriverSpecificDone done) {
+  done(check_driver_specific(request));
+}
+
 }  // namespace acomms::link

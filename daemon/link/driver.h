@@ -36,6 +36,7 @@
 #include <string_view>
 
 #include "acomms/v1/modem_transmission.pb.h"
+#include "link/driver_specific.h"
 
 namespace acomms::link {
 
@@ -97,6 +98,16 @@ class Driver {
   virtual double sound_speed() const;
   // Losses this driver has seen (see DriverCounters).
   virtual DriverCounters counters() const { return {}; }
+
+  // Driver-specific transmissions (link/driver_specific.h). check: before
+  // any wait, whether the request can be done (status kOk) or why not.
+  // Default: kUnimplemented naming the request.
+  virtual DriverSpecificResult check_driver_specific(const v1::ModemTransmission& request) const;
+  // Sends a checked request now (the channel is this node's); `done` runs
+  // exactly once, at the latest shortly after `deadline_s` (seconds since
+  // the Unix epoch, the driver's clock). Default: kUnimplemented.
+  virtual void send_driver_specific(const v1::ModemTransmission& request, double deadline_s,
+                                    DriverSpecificDone done);
 };
 
 }  // namespace acomms::link

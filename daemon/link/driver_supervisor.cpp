@@ -141,6 +141,37 @@ void DriverSupervisor::initiate_transmission(const v1::ModemTransmission& transm
   }
 }
 
+DriverSpecificResult DriverSupervisor::check_driver_specific(const v1::ModemTransmission& request) const {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (status_.state != DriverState::kRunning || !driver_) {
+    return driver_specific_error(DriverSpecificStatus::kUnavailable,
+                                 "driver " + options_.driver_name + " is " +
+                                     describe(status_, scheduler_.clock().now()),
+                                 request);
+  }
+  DriverSpecificResult result = driver_->check_driver_specific(request);
+  if (result.status != DriverSpecificStatus::kOk) result.error = "driver " + options_.driver_name + " " + result.error;
+  return result;
+}
+
+void DriverSupervisor::send_driver_specific(const v1::ModemTransmission& request, double deadline_s,
+                                            DriverSpecificDone done) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  DriverSpecificResult checked = check_driver_specific(request);
+  if (checked.status != DriverSpecificStatus::kOk) return done(std::move(checked));
+  try {
+    driver_->send_driver_specific(request, deadline_s, [name = options_.driver_name, done](DriverSpecificResult r) {
+      if (r.status != DriverSpecificStatus::kOk) r.error = "driver " + name + ": " + r.error;
+      done(std::move(r));
+    });
+  } catch (const std::exception& e) {
+    std::string why = e.what();
+    fail(why);
+    done(driver_specific_error(DriverSpecificStatus::kAborted, "driver " + options_.driver_name + " failed: " + why,
+                               request));
+  }
+}
+
 void DriverSupervisor::fail(const std::string& reason) {
   scheduler_.cancel(work_task_);
   work_task_ = 0;

@@ -92,6 +92,11 @@ class DriverSupervisor final : public Driver {
   double sound_speed() const override;
   // Every driver's counters since the supervisor was built, across restarts.
   DriverCounters counters() const override;
+  // The running driver's, its errors naming it ("driver sim does not
+  // support ..."); kUnavailable while it is down.
+  DriverSpecificResult check_driver_specific(const v1::ModemTransmission& request) const override;
+  void send_driver_specific(const v1::ModemTransmission& request, double deadline_s,
+                            DriverSpecificDone done) override;
 
   const DriverStatus& status() const { return status_; }
   // The running driver, or nullptr while it is down (for tests and tools).

@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <google/protobuf/descriptor.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -41,7 +43,8 @@ LinkController::LinkController(int32_t own_id, queue::QueueManager& queues, mac:
       mac_(mac),
       driver_(driver),
       deliver_(std::move(deliver)),
-      options_(options) {}
+      options_(options),
+      gate_(options.clock, options.scheduler) {}
 
 void LinkController::start() {
   ACOMMS_ASSERT_CORE_THREAD();
@@ -65,6 +68,9 @@ void LinkController::start() {
       explicit OwnSlot(bool& f) : flag(f) { flag = true; }
       ~OwnSlot() { flag = false; }
     } own_slot(in_own_slot_);
+    // The slot rule (driver_specific_gate.h): our own slot carries a
+    // waiting extra instead of data.
+    if (t.src() == own_id_ && gate_.waiting() && gate_.send_next(driver_, "this node's slot")) return;
     try {
       driver_.initiate_transmission(t);
     } catch (const DriverError& e) {
@@ -77,7 +83,17 @@ void LinkController::start() {
 void LinkController::stop() {
   ACOMMS_ASSERT_CORE_THREAD();
   mac_.stop();
+  gate_.abort("the link stopped");
   driver_.stop();
+}
+
+void LinkController::request_driver_specific(const v1::ModemTransmission& request, double timeout_s,
+                                             DriverSpecificDone done) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  double deadline_s = (options_.clock == nullptr ? 0 : options_.clock->now_seconds()) + timeout_s;
+  DriverSpecificResult checked = driver_.check_driver_specific(request);
+  if (checked.status != DriverSpecificStatus::kOk) return done(std::move(checked));
+  gate_.wait(request, deadline_s, std::move(done));
 }
 
 void LinkController::on_data_request(v1::ModemTransmission* transmission) {
@@ -87,13 +103,21 @@ void LinkController::on_data_request(v1::ModemTransmission* transmission) {
   request.max_frame_bytes = transmission->max_frame_bytes();
   request.max_num_frames = frames_for_slot(*transmission);
   request.ack_requested = transmission->ack_requested();
-  transmission->set_max_num_frames(request.max_num_frames);
+  if (!in_own_slot_ && gate_.waiting()) {
+    // A poll gives this slotless node the channel and an extra waits: the
+    // poll is answered with one blank frame (the modem expects an answer)
+    // and the extra follows it (on_transmit_result).
+    extra_after_poll_answer_ = true;
+    request.max_num_frames = 0;
+  }
+  transmission->set_max_num_frames(extra_after_poll_answer_ ? 1 : request.max_num_frames);
   transmission->clear_frame();
   // Not even one frame fits: no packet at all (not even the empty one
   // below), since one that outruns the slot is lost anyway and costs the
   // next slot's owner its reception.
-  if (request.max_num_frames == 0) return;
-  std::vector<queue::Frame> frames = queues_.build_frames(request);
+  if (request.max_num_frames == 0 && !extra_after_poll_answer_) return;
+  std::vector<queue::Frame> frames;
+  if (request.max_num_frames > 0) frames = queues_.build_frames(request);
   std::vector<uint64_t> frame_ids;
   bool ack = false;
   for (queue::Frame& frame : frames) {
@@ -152,6 +176,7 @@ void LinkController::on_receive(const v1::ModemTransmission& transmission) {
     awaiting_ack_.erase(it);
     return;
   }
+  if (transmission.type() == v1::ModemTransmission::DRIVER_SPECIFIC) return deliver_driver_specific(transmission);
   if (transmission.type() != v1::ModemTransmission::DATA) return;
   ++stats_.data_received;
   if (transmission.has_figures()) {
@@ -168,8 +193,47 @@ void LinkController::on_receive(const v1::ModemTransmission& transmission) {
   }
 }
 
+void LinkController::deliver_driver_specific(const v1::ModemTransmission& transmission) {
+  const google::protobuf::Reflection* reflection = transmission.GetReflection();
+  std::vector<const google::protobuf::FieldDescriptor*> fields;
+  reflection->ListFields(transmission, &fields);
+  for (const google::protobuf::FieldDescriptor* field : fields) {
+    if (!field->is_extension() || field->is_repeated() ||
+        field->cpp_type() != google::protobuf::FieldDescriptor::CPPTYPE_MESSAGE) {
+      continue;
+    }
+    const google::protobuf::Message& extension = reflection->GetMessage(transmission, field);
+    queue::ReceivedMessage message;
+    message.type = extension.GetDescriptor()->full_name();
+    message.message.reset(extension.New());
+    message.message->CopyFrom(extension);
+    message.src = transmission.src();
+    message.dest = transmission.dest() < 0 ? queue::kBroadcast : transmission.dest();
+    message.time = transmission.time();
+    // seq 0: driver-specific receptions are not journaled (no DCCL queue
+    // holds their type), so a resuming subscriber does not get them again.
+    ++stats_.messages_delivered;
+    deliver_(std::move(message), transmission);
+  }
+}
+
 void LinkController::on_transmit_result(const v1::ModemTransmission& transmission, bool ok,
                                         const std::string& error) {
+  if (extra_after_poll_answer_ && transmission.src() == own_id_) {
+    extra_after_poll_answer_ = false;
+    // Not at once: the answer is still in the water, and the extra would
+    // arrive at the poller while it is hearing the answer (and lose both).
+    // So after the answer has travelled the farthest range and been heard
+    // (with room for an ACK), as the slot budget counts it.
+    auto send = [this] { gate_.send_next(driver_, "the channel a poll gave this node"); };
+    if (options_.scheduler != nullptr) {
+      auto clear = std::chrono::duration_cast<std::chrono::system_clock::duration>(
+          travel_time(driver_, options_.max_range_m) + driver_.ack_time(transmission.rate()));
+      options_.scheduler->after(clear, send);
+    } else {
+      send();
+    }
+  }
   if (ok) {
     ++stats_.transmissions_sent;
     return;

@@ -23,6 +23,7 @@
 #include "acomms/v1/modem_transmission.pb.h"
 #include "core/clock.h"
 #include "link/driver.h"
+#include "link/driver_specific_gate.h"
 #include "link/slot_budget.h"
 #include "mac/mac.h"
 #include "queue/queue_manager.h"
@@ -47,6 +48,9 @@ struct LinkOptions {
   // The farthest node (mac.max_range_m): the slot keeps the time sound
   // takes to get there (and back, for an ACK).
   double max_range_m = kDefaultMaxRangeM;
+  // Runs the deadlines of driver-specific requests waiting for a slot
+  // (null: checked when the slot comes).
+  core::Scheduler* scheduler = nullptr;
 
   // From the config (mac.max_range_m, unset: kDefaultMaxRangeM) and the
   // core's clock.
@@ -68,6 +72,11 @@ class LinkController {
   void stop();
 
   const LinkStats& stats() const { return stats_; }
+  // A driver-specific transmission (link/driver_specific.h): checked by the
+  // driver now, then sent when the channel is this node's (the slot rule:
+  // link/driver_specific_gate.h); `done` runs exactly once.
+  // `timeout_s` from now covers the wait and the exchange.
+  void request_driver_specific(const v1::ModemTransmission& request, double timeout_s, DriverSpecificDone done);
   // Every chunk of bytes to (outgoing) and from the device, as the driver
   // reports it (the raw link log). Set before start().
   void set_raw_tap(std::function<void(std::string_view bytes, bool outgoing)> tap) { raw_tap_ = std::move(tap); }
@@ -77,6 +86,9 @@ class LinkController {
   // max_num_frames capped by what fits in the rest of the slot.
   uint32_t frames_for_slot(const v1::ModemTransmission& transmission);
   void on_receive(const v1::ModemTransmission& transmission);
+  // A received DRIVER_SPECIFIC: each extension message set goes to the
+  // subscribers as a message of its own type (not kept in the store).
+  void deliver_driver_specific(const v1::ModemTransmission& transmission);
   void on_transmit_result(const v1::ModemTransmission& transmission, bool ok, const std::string& error);
 
   int32_t own_id_;
@@ -93,6 +105,10 @@ class LinkController {
   std::map<int32_t, std::vector<uint64_t>> awaiting_ack_;
   LinkStats stats_;
   std::function<void(std::string_view, bool)> raw_tap_;
+  DriverSpecificGate gate_;
+  // A poll was answered with a blank frame so that a waiting extra can
+  // follow it: sent at that answer's result.
+  bool extra_after_poll_answer_ = false;
 };
 
 }  // namespace acomms::link

@@ -3,8 +3,8 @@
 // work to the core thread (which owns the queues and the link), translate
 // the answer into a gRPC status a person can act on. The methods are
 // implemented by concern: message_rpcs.cpp (Submit, Encode, Decode),
-// definition_rpcs.cpp, queue_rpcs.cpp, link_rpcs.cpp, event_rpcs.cpp,
-// subscribe_rpc.cpp.
+// definition_rpcs.cpp, queue_rpcs.cpp, link_rpcs.cpp, driver_specific_rpc.cpp,
+// event_rpcs.cpp, subscribe_rpc.cpp.
 
 #include <chrono>
 #include <string>
@@ -87,6 +87,8 @@ class AcommsService final : public v1::Acomms::WithCallbackMethod_Submit<v1::Aco
 
   grpc::Status LinkStatus(grpc::ServerContext*, const v1::LinkStatusRequest*, v1::LinkStatusResponse*) override;
   grpc::Status SetCycle(grpc::ServerContext*, const v1::SetCycleRequest*, v1::SetCycleResponse*) override;
+  grpc::Status DriverSpecific(grpc::ServerContext*, const v1::DriverSpecificRequest*,
+                              v1::DriverSpecificResponse*) override;
 
   grpc::Status Events(grpc::ServerContext*, const v1::EventsRequest*, v1::EventsResponse*) override;
 

@@ -14,8 +14,11 @@
 //  3. Replay ends when a read finds nothing newer; `cursor` is then the
 //     last seq written. Live messages with seq <= cursor were replayed
 //     already and are skipped; the rest are newer, in order.
-// INVARIANT: the seqs written to one stream strictly increase.
+// INVARIANT: the seqs written to one stream strictly increase (leaving out
+// seq 0, driver-specific receptions that are never stored).
 #include <spdlog/spdlog.h>
+
+#include <google/protobuf/descriptor.h>
 
 #include "service/acomms_service.h"
 #include "service/message_json.h"
@@ -48,6 +51,14 @@ v1::ReceivedMessage from_store(const queue::StoredReceived& stored, const dccl::
   return out;
 }
 
+// What a driver reports as received outside DCCL (a Micro-Modem mini-packet:
+// link/driver_specific.h) arrives under its own message type, compiled in
+// with the driver's proto (api/proto/acomms/drivers/).
+bool is_driver_specific_type(const std::string& type) {
+  return type.starts_with("acomms.drivers.") &&
+         google::protobuf::DescriptorPool::generated_pool()->FindMessageTypeByName(type) != nullptr;
+}
+
 }  // namespace
 
 grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::SubscribeRequest* request,
@@ -56,7 +67,7 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
   {
     auto stable = node_.submitter.types_stable();
     for (const std::string& type : request->types()) {
-      if (node_.codec.find_type(type) == nullptr) {
+      if (node_.codec.find_type(type) == nullptr && !is_driver_specific_type(type)) {
         return type_not_loaded(type);
       }
       filter.types.insert(type);
@@ -110,9 +121,11 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
   }
   while (!gone && !context->IsCancelled()) {
     if (std::optional<v1::ReceivedMessage> message = subscription->next(kPollCancel)) {
-      if (message->seq() <= cursor) continue;  // replayed already (seam step 3)
+      // seq 0: a driver-specific reception, never stored nor replayed
+      // (link/driver_specific.h); it does not move the cursor.
+      if (message->seq() != 0 && message->seq() <= cursor) continue;  // replayed already (seam step 3)
       if (!writer->Write(*message)) break;  // the client went away
-      cursor = message->seq();
+      if (message->seq() != 0) cursor = message->seq();
       continue;
     }
     if (std::optional<grpc::Status> ended = subscription->ended()) {

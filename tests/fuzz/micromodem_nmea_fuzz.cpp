@@ -11,6 +11,9 @@
 
 #include "micromodem/nmea/config_sentences.h"
 #include "micromodem/nmea/cycle_sentences.h"
+#include "micromodem/nmea/fdp_sentences.h"
+#include "micromodem/nmea/mini_packet_sentences.h"
+#include "micromodem/nmea/ranging_sentences.h"
 #include "micromodem/nmea/receive_sentences.h"
 #include "micromodem/nmea/statistics_sentences.h"
 
@@ -53,6 +56,25 @@ void check_typed(const Sentence& s) {
   typed_round_trip<ModemError>(s, parse_modem_error, plain);
   typed_round_trip<ReceiveStatistics>(s, parse_receive_statistics, plain);
   typed_round_trip<TransmitStatistics>(s, parse_transmit_statistics, plain);
+  // Ping, LBL, mini-packets, FDP (the driver's extras).
+  const char* ping_type = s.type == "MPA" ? "MPA" : "MPC";
+  typed_round_trip<Ping>(s, parse_ping, [&](const Ping& v) { return to_sentence(v, talker, ping_type); });
+  typed_round_trip<PingReply>(s, parse_ping_reply, plain);
+  typed_round_trip<NarrowbandInterrogation>(s, parse_narrowband_interrogation, plain);
+  typed_round_trip<RemusInterrogation>(s, parse_remus_interrogation, plain);
+  typed_round_trip<TravelTimes>(s, parse_travel_times, plain);
+  const char* mini_type = s.type == "MUA" ? "MUA" : "MUC";
+  typed_round_trip<MiniPacket>(s, parse_mini_packet, [&](const MiniPacket& v) { return to_sentence(v, talker, mini_type); });
+  typed_round_trip<FdpTransmit>(s, parse_fdp_transmit, plain);
+  typed_round_trip<FdpEcho>(s, parse_fdp_echo, [](const FdpEcho& v) { return to_sentence(v, 0, 0); });
+  typed_round_trip<FdpReceived>(s, parse_fdp_received, plain);
+  if (Result<FdpReceived> fdp = parse_fdp_received(s)) {
+    // The payload is the frames' bytes, in order, whatever their CRCs.
+    size_t bytes = 0;
+    for (const auto& f : fdp->mini_frames) bytes += f.data.size();
+    for (const auto& f : fdp->data_frames) bytes += f.data.size();
+    if (fdp->payload().size() != bytes) __builtin_trap();
+  }
   if (s.is("CAREV")) {
     Result<ModemGeneration> generation = modem_generation(s.field(3));
     if (!generation && generation.error().text.empty()) __builtin_trap();

@@ -495,6 +495,24 @@ TEST_F(AcommsctlApi, LinkCycleOnMacNoneIsFailedPreconditionAndBadSlotsAreUsage) 
   EXPECT_NE(human.out.find("driver:       sim"), std::string::npos) << human.out;
 }
 
+TEST_F(AcommsctlApi, DriverSpecificRequestsOnTheSimDriverAreUnimplementedNamingTheRequest) {
+  // acommsctl link ping builds a DRIVER_SPECIFIC with the Micro-Modem's
+  // extension; the sim driver knows none and says which it was given.
+  RunResult ping = ctl({"link", "ping", "2", "--wait", "5"});
+  EXPECT_EQ(ping.exit_code, 1);
+  EXPECT_EQ(ping.err.rfind("acommsctl: UNIMPLEMENTED: ", 0), 0u) << ping.err;
+  EXPECT_NE(ping.err.find("driver sim does not support the driver-specific request "
+                          "acomms.drivers.micromodem_transmission"),
+            std::string::npos)
+      << ping.err;
+  RunResult mini = ctl({"link", "mini", "2", "9000"});
+  EXPECT_EQ(mini.exit_code, 2);  // refused before asking: 13 bits
+  EXPECT_NE(mini.err.find("0..8191"), std::string::npos) << mini.err;
+  RunResult lbl = ctl({"link", "lbl", "--remus", "AB"});
+  EXPECT_EQ(lbl.exit_code, 1);
+  EXPECT_NE(lbl.err.find("UNIMPLEMENTED"), std::string::npos) << lbl.err;
+}
+
 // ------------------------------------------------------------------ misc
 
 TEST_F(AcommsctlApi, EventsTimesAreCheckedBeforeAsking) {

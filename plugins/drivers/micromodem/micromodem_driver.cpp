@@ -39,6 +39,29 @@ double scale_of(const v1::DriverConfig& config) {
   return scale == 0 ? 1 : scale;
 }
 
+DriverSpecificExchange::Settings extra_settings(const v1::DriverConfig& config, int32_t id) {
+  DriverSpecificExchange::Settings settings;
+  settings.own_id = id;
+  settings.time_scale = scale_of(config);
+  double c = config.micromodem().sound_speed_mps();
+  if (c < 0 || (c > 0 && (c < 1000 || c > 2000))) {
+    throw std::invalid_argument("driver.micromodem.sound_speed_mps " + std::to_string(c) +
+                                " is outside 1000..2000 m/s (0: 1500)");
+  }
+  if (c > 0) settings.sound_speed = c;
+  if (config.micromodem().max_range_m() > 0) settings.max_range_m = config.micromodem().max_range_m();
+  for (const ConfigParameter& p : user_cfg_of(config)) {
+    if (p.name == "psk.packet.mod_hdr_version") settings.fdp_configured = p.value == "1";
+  }
+  for (uint32_t mm1 : config.micromodem().mm1_modems()) {
+    if (mm1 < 1 || mm1 > static_cast<uint32_t>(nmea::kMaxAddress)) {
+      throw std::invalid_argument("driver.micromodem.mm1_modems " + std::to_string(mm1) + " is not a modem id (1..127)");
+    }
+    settings.mm1_modems.push_back(static_cast<int32_t>(mm1));
+  }
+  return settings;
+}
+
 CycleTimeouts cycle_timeouts(const v1::DriverConfig& config) {
   CycleTimeouts t;
   if (config.micromodem().max_range_m() > 0) t.max_range_m = config.micromodem().max_range_m();
@@ -69,7 +92,13 @@ MicroModemDriver::MicroModemDriver(const v1::DriverConfig& config, core::Schedul
               [this](const ModemTransmission& tx, Duration wait) { acks_.expect(tx, wait); }}),
       reception_([this] { return now_seconds(); },
                  [this](ModemTransmission rx) { sequence_.on_received(rx); }),
-      acks_(scheduler, id_, [this](const ModemTransmission& ack) { sequence_.on_received(ack); }) {
+      acks_(scheduler, id_, [this](const ModemTransmission& ack) { sequence_.on_received(ack); }),
+      extras_(scheduler, commands_, extra_settings(config, id_),
+              {[this] { return generation_; },
+               [this](const ModemTransmission& rx) {
+                 if (sequence_.running() && sequence_.callbacks().on_receive) sequence_.callbacks().on_receive(rx);
+               },
+               [this] { return now_seconds(); }}) {
   if (id_ > nmea::kMaxAddress) {
     throw std::invalid_argument("driver.modem_id " + std::to_string(id_) + " is not a Micro-Modem address (1..127)");
   }
@@ -103,6 +132,7 @@ void MicroModemDriver::stop() {
   ready_ = false;
   // Failures of what was in flight still reach the sequence's owner.
   cycle_.abort("the driver stopped");
+  extras_.abort("the driver stopped");
   commands_.clear("the driver stopped");
   acks_.reset();
   reception_.reset();
@@ -124,7 +154,7 @@ void MicroModemDriver::do_work() {
 }
 
 void MicroModemDriver::keep_alive() {
-  if (!ready_ || !cycle_.idle() || !commands_.idle()) return;
+  if (!ready_ || !cycle_.idle() || !commands_.idle() || !extras_.idle()) return;
   if (scheduler_.clock().now() - last_line_ < scaled(kKeepAlive)) return;
   last_line_ = scheduler_.clock().now();  // one probe per quiet period
   commands_.push({to_sentence(nmea::ConfigQuery{"SRC"}),
@@ -149,6 +179,7 @@ std::string MicroModemDriver::send(const ModemTransmission& tx, bool) {
   }
   if (!ready_) return "the modem is not ready (start-up in progress)";
   if (!commands_.idle()) return "busy: a command to the modem is waiting for its reply";
+  if (!extras_.idle()) return "busy: a driver-specific exchange (ping, LBL, ...) is in progress";
   return cycle_.start(tx, answering_poll_);
 }
 
@@ -204,6 +235,7 @@ void MicroModemDriver::on_reboot() {
   startup_.reset();
   commands_.clear("the modem rebooted");
   cycle_.abort("the modem rebooted ($CAREV INIT) during the exchange");
+  extras_.abort("the modem rebooted ($CAREV INIT) during the exchange");
   acks_.reset();
   reception_.reset();
   begin_startup();  // listens for the AUV line first: the modem is booting (§4.1)
@@ -253,6 +285,7 @@ bool MicroModemDriver::parsed(const nmea::Result<T>& result, const Sentence& sen
 }
 
 void MicroModemDriver::dispatch(const Sentence& s) {
+  if (dispatch_driver_specific(s)) return;
   if (s.talker == "CA") {
     const std::string& t = s.type;
     if (t == "REV") return on_revision(s);

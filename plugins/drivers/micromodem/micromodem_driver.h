@@ -15,6 +15,8 @@
 //   reception         — $CARXP … $CACST into DATA transmissions
 //   ack_tracker       — the modem's $CAACK into one ACK per packet
 //   bad_input_log     — counted, logged once per burst
+//   driver_specific_exchange — ping, LBL, mini-packets, FDP (spec §6-§7);
+//                       its sentences are routed in micromodem_driver_specific.cpp
 // The DriverSequence (link/driver_sequence.h) makes the decisions every
 // driver shares (data request before the cycle, polls, what on_receive
 // sees); the modem acknowledges in hardware, so software_acks is off.
@@ -41,6 +43,7 @@
 #include "micromodem/bad_input_log.h"
 #include "micromodem/command_queue.h"
 #include "micromodem/data_cycle.h"
+#include "micromodem/driver_specific_exchange.h"
 #include "micromodem/modem_port.h"
 #include "micromodem/nmea/line_framer.h"
 #include "micromodem/reception.h"
@@ -65,6 +68,11 @@ class MicroModemDriver final : public link::Driver {
   std::chrono::nanoseconds packet_air_time(int32_t rate, uint32_t num_frames) const override;
   std::chrono::nanoseconds ack_time(int32_t rate) const override;
   double sound_speed() const override;
+  // micromodem_driver_specific.cpp: ping, LBL, mini-packets, FDP.
+  link::DriverSpecificResult check_driver_specific(const v1::ModemTransmission& request) const override;
+  void send_driver_specific(const v1::ModemTransmission& request, double deadline_s,
+                            link::DriverSpecificDone done) override;
+  const DriverSpecificExchange::Counters& driver_specific_counters() const { return extras_.counters(); }
 
   int32_t modem_id() const { return id_; }
   // Start-up finished and no reboot since.
@@ -83,6 +91,8 @@ class MicroModemDriver final : public link::Driver {
   void on_port_state(link::TransportState state, const std::string& detail);
   void on_line(const std::string& line);
   void dispatch(const ::acomms::micromodem::Sentence& sentence);
+  // The sentences of driver-specific exchanges; true when it took this one.
+  bool dispatch_driver_specific(const ::acomms::micromodem::Sentence& sentence);
   void on_revision(const ::acomms::micromodem::Sentence& sentence);
   void on_cycle(const ::acomms::micromodem::Sentence& sentence);
   void on_error(const ::acomms::micromodem::Sentence& sentence);
@@ -113,6 +123,7 @@ class MicroModemDriver final : public link::Driver {
   DataCycle cycle_;
   Reception reception_;
   AckTracker acks_;
+  DriverSpecificExchange extras_;
   std::unique_ptr<StartupSequence> startup_;
   bool ready_ = false;
   bool answering_poll_ = false;  // inside answer_poll(): send() starts a polled exchange

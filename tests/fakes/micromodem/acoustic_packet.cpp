@@ -9,7 +9,7 @@ namespace acomms::fake_micromodem {
 namespace {
 
 constexpr std::string_view kMagic = "FAKEMM1";
-constexpr size_t kMaxFrames = 16;
+constexpr size_t kMaxFrames = 16;  // an FDP packet is one frame of up to 2 KiB
 
 bool fail(std::string* error, std::string text) {
   if (error) *error = std::move(text);
@@ -85,7 +85,7 @@ std::optional<WaterDatagram> decode_datagram(std::string_view text, std::string*
     return std::nullopt;
   }
   bool finite = std::isfinite(d.from.x) && std::isfinite(d.from.y) && std::isfinite(d.from.z);
-  if (!finite || air_ms < 0 || air_ms > 60'000 || kind < 0 || kind > 2 || p.rate < 0 ||
+  if (!finite || air_ms < 0 || air_ms > 60'000 || kind < 0 || kind > static_cast<int>(PacketKind::kFdp) || p.rate < 0 ||
       p.rate > 6 || p.source < 0 || p.source > 127 || p.destination < 0 || p.destination > 127 ||
       ack < 0 || ack > 1 || p.frames_wanted < 0 || p.frames_wanted > 8) {
     fail(error, "datagram header is out of range");

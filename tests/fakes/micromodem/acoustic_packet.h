@@ -24,7 +24,11 @@ struct Position {
 };
 double distance(const Position& a, const Position& b);
 
-enum class PacketKind { kCycleInit, kData, kAck };
+// The extras (fake_micromodem_extras.cpp): a ping and its reply (mini-
+// packets), a user mini-packet (its 13 bits as one 2-byte frame) and an
+// MM2 FDP packet (its bytes as one frame; frames_wanted carries the
+// sender's psk.packet.mod_hdr_version, which receivers must share).
+enum class PacketKind { kCycleInit, kData, kAck, kPing, kPingReply, kMiniPacket, kFdp };
 
 struct DataFrame {
   bool ack = false;
@@ -40,12 +44,13 @@ struct AcousticPacket {
   int frames_wanted = 0;    // cycle-init: Nframes
   std::vector<DataFrame> frames;    // data
   std::vector<int> acked_frames;    // ack: frame numbers from 1
-  bool is_mini() const { return kind != PacketKind::kData; }
+  bool is_mini() const { return kind != PacketKind::kData && kind != PacketKind::kFdp; }
   // $CARXP type and the statistics' packet type: data packets are FSK at
   // rate 0, PSK above; mini-packets FSK unless NVRAM MOD=1, except that an
   // ACK answers a PSK packet with a PSK mini (§5.7).
   bool is_psk(bool psk_minis) const {
     if (kind == PacketKind::kData) return rate > 0;
+    if (kind == PacketKind::kFdp) return true;
     return psk_minis || (kind == PacketKind::kAck && rate > 0);
   }
 };

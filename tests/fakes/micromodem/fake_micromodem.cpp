@@ -176,6 +176,8 @@ void FakeMicroModem::handle_command(const Sentence& s) {
     return handle_cycle(s);
   } else if (s.type == "TXD") {
     return handle_transmit_data(s);
+  } else if (handle_extra_command(s)) {
+    return;
   } else if (mm2 && s.type == "ALQ") {
     // API level 11: an MM2 with $CCTMS (pyacomms' reading, §4.1).
     return echo_later(Sentence{"CA", "ALQ", {"fake_micromodem", "11"}});

@@ -9,7 +9,9 @@
 //
 // Decisions where the spec is silent are commented where they are made
 // and listed in README.md. The fake is deliberately plain: one modem, one
-// exchange at a time, no FDP, ping or LBL.
+// exchange at a time. The extras (two-way ping, narrowband and REMUS LBL
+// against the water's transponders, user mini-packets, MM2 FDP) are in
+// fake_micromodem_extras.cpp.
 //
 // Threading: everything runs on the scheduler's thread (the fake is a
 // single-threaded object like the driver it tests). from_host() and the
@@ -114,6 +116,16 @@ class FakeMicroModem final : public WaterListener {
   void transmit_statistics(const AcousticPacket& packet, int mode, int frames_sent, int bytes);
   void poll_timeout(uint64_t poll_id);
 
+  // fake_micromodem_extras.cpp: ping, LBL, mini-packets, FDP.
+  // True when `sentence` was one of theirs.
+  bool handle_extra_command(const micromodem::Sentence& sentence);
+  void handle_ping(const micromodem::Sentence& sentence);
+  void handle_mini_packet(const micromodem::Sentence& sentence);
+  void handle_fdp(const micromodem::Sentence& sentence);
+  void handle_lbl(const micromodem::Sentence& sentence);
+  void receive_extra(const AcousticPacket& packet, bool damaged);
+  bool busy() const;
+
   // fake_micromodem_reception.cpp: receive side.
   void finish_reception();
   void receive_cycle_init(const AcousticPacket& packet);
@@ -151,6 +163,10 @@ class FakeMicroModem final : public WaterListener {
   // A third-party poll this modem sent, waiting for the polled packet.
   std::optional<std::pair<uint64_t, int>> awaited_poll_;  // (id, polled address)
   uint64_t next_poll_id_ = 1;
+  // The modem a $CCMPC of ours pinged, until its reply is printed.
+  std::optional<int> awaited_ping_;
+  core::Clock::time_point listening_until_{};  // an LBL interrogation's Timeout
+  uint64_t next_fdp_id_ = 1;
 };
 
 }  // namespace acomms::fake_micromodem

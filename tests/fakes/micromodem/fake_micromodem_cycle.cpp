@@ -206,8 +206,9 @@ void FakeMicroModem::transmit_statistics(const AcousticPacket& packet, int mode,
   s.ack = packet.ack;
   s.frames_expected = packet.is_mini() ? 0 : packet.frames_wanted;
   s.frames_sent = frames_sent;
-  s.packet_type = packet.is_mini() ? (psk ? kPacketPskMini : kPacketFskMini)
-                                   : (psk ? kPacketPsk : kPacketFsk);
+  s.packet_type = packet.kind == PacketKind::kFdp ? kPacketFdp
+                  : packet.is_mini()                ? (psk ? kPacketPskMini : kPacketFskMini)
+                                                    : (psk ? kPacketPsk : kPacketFsk);
   s.bytes = bytes;
   s.carrier_used = mm1 ? 0 : s.carrier;
   emit(to_sentence(s));

@@ -59,6 +59,34 @@ FakeModemConfig parse_modem(const std::string& text) {
   return config;
 }
 
+// "nb,26000,X,Y,Z[,silent]" or "remus,A,X,Y,Z[,silent]" → an LBL transponder.
+Transponder parse_transponder(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> parts;
+  for (std::string part; std::getline(in, part, ',');) parts.push_back(part);
+  auto bad = [&] {
+    return CLI::ValidationError("--transponder", "'" + text + "' is not nb,FREQ_HZ,X,Y,Z[,silent] or remus,A..D,X,Y,Z[,silent]");
+  };
+  if (parts.size() < 5 || parts.size() > 6 || (parts.size() == 6 && parts[5] != "silent")) throw bad();
+  Transponder t;
+  try {
+    if (parts[0] == "nb") {
+      t.kind = Transponder::Kind::kNarrowband;
+      t.reply_frequency_hz = std::stoi(parts[1]);
+    } else if (parts[0] == "remus" && parts[1].size() == 1 && parts[1][0] >= 'A' && parts[1][0] <= 'D') {
+      t.kind = Transponder::Kind::kRemus;
+      t.beacon = parts[1][0];
+    } else {
+      throw bad();
+    }
+    t.position = {std::stod(parts[2]), std::stod(parts[3]), std::stod(parts[4])};
+  } catch (const std::logic_error&) {
+    throw bad();
+  }
+  t.answers = parts.size() == 5;
+  return t;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -71,6 +99,9 @@ int main(int argc, char** argv) {
   uint16_t bus_port = 0;
   std::vector<uint16_t> bus_peers;
   app.add_option("--modem", modem_specs, "ADDRESS,mm1|mm2,X,Y,Z (metres); repeatable")->required();
+  std::vector<std::string> transponder_specs;
+  app.add_option("--transponder", transponder_specs,
+                 "LBL transponder: nb,FREQ_HZ,X,Y,Z or remus,A..D,X,Y,Z; ',silent' at the end: never answers; repeatable");
   app.add_option("--transport", transport, "pty or tcp")->check(CLI::IsMember({"pty", "tcp"}));
   app.add_option("--tcp-base-port", tcp_base_port, "modem i listens on base+i (0: any free port)");
   app.add_option("--time-scale", time_scale, "simulated seconds per real second")->check(CLI::Range(0.01, 1000.0));
@@ -84,7 +115,13 @@ int main(int argc, char** argv) {
 
   asio::io_context context;
   ScaledScheduler scheduler(context, time_scale);
-  Water water(scheduler, {sound_speed, loss, seed});
+  Water::Settings water_settings{sound_speed, loss, seed, {}};
+  try {
+    for (const std::string& spec : transponder_specs) water_settings.transponders.push_back(parse_transponder(spec));
+  } catch (const CLI::Error& e) {
+    return app.exit(e);
+  }
+  Water water(scheduler, water_settings);
   std::unique_ptr<UdpWaterBus> bus;
   if (bus_port != 0) bus = std::make_unique<UdpWaterBus>(context, water, bus_port, bus_peers);
 

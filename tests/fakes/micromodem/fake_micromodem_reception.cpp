@@ -58,6 +58,8 @@ void FakeMicroModem::finish_reception() {
         return receive_statistics(done->packet, 1, 1);
       }
       return receive_ack(done->packet);
+    default:
+      return receive_extra(done->packet, done->damaged);
   }
 }
 
@@ -146,7 +148,9 @@ void FakeMicroModem::receive_statistics(const AcousticPacket& p, int mode, int b
     s.source = p.source;
     s.destination = p.destination;
     s.psk_error = psk && bad_frames > 0 ? 3 : 0;
-    s.packet_type = p.is_mini() ? (psk ? kPacketPskMini : kPacketFskMini) : (psk ? kPacketPsk : kPacketFsk);
+    s.packet_type = p.kind == PacketKind::kFdp ? kPacketFdp
+                    : p.is_mini()                ? (psk ? kPacketPskMini : kPacketFskMini)
+                                                 : (psk ? kPacketPsk : kPacketFsk);
     s.frames = p.is_mini() ? 1 : static_cast<int>(p.frames.size());
     s.bad_frames = bad_frames;
     s.rss = std::round(spl);

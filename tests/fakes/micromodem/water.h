@@ -18,6 +18,7 @@
 
 #include "acoustic_packet.h"
 #include "core/scheduler.h"
+#include "transponder.h"
 
 namespace acomms::fake_micromodem {
 
@@ -38,6 +39,7 @@ class Water {
     double sound_speed = 1500;     // m/s
     double loss_probability = 0;   // per receiver and packet
     uint32_t seed = 1;             // losses are repeatable
+    std::vector<Transponder> transponders;  // LBL (transponder.h)
   };
 
   Water(core::Scheduler& scheduler, Settings settings);
