@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,14 @@ void print_status(const v1::LinkStatusResponse& link) {
               static_cast<unsigned long long>(c.malformed_frames()),
               static_cast<unsigned long long>(c.lost_half_duplex()),
               static_cast<unsigned long long>(c.lost_collision()));
+  if (!c.bad_input().empty()) {
+    // Sorted by kind: a map field's order is not defined.
+    std::map<std::string, uint64_t> kinds(c.bad_input().begin(), c.bad_input().end());
+    std::string text;
+    for (const auto& [kind, count] : kinds) text += (text.empty() ? "" : ", ") + kind + " " + std::to_string(count);
+    std::printf("bad input:    %s
+", text.c_str());
+  }
 }
 
 void run_status(const GlobalOptions& global) {

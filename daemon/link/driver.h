@@ -30,6 +30,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -66,6 +67,10 @@ inline constexpr double kAirTimeMargin = 0.10;
 struct DriverCounters {
   uint64_t lost_half_duplex = 0;  // arrived while this node transmitted
   uint64_t lost_collision = 0;    // overlapped another packet arriving
+  // Input from the modem the driver could not use, by kind (Micro-Modem:
+  // "noise" in bytes, "bad checksum", "truncated line", ... in lines);
+  // the driver logs it once per burst, these say how much there was.
+  std::map<std::string, uint64_t> bad_input;
 
   DriverCounters& operator+=(const DriverCounters& other);
 };

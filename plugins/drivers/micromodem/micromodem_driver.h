@@ -65,6 +65,8 @@ class MicroModemDriver final : public link::Driver {
   std::chrono::nanoseconds packet_air_time(int32_t rate, uint32_t num_frames) const override;
   std::chrono::nanoseconds ack_time(int32_t rate) const override;
   double sound_speed() const override;
+  // What the bad-input log counted (for LinkStatus).
+  link::DriverCounters counters() const override;
 
   int32_t modem_id() const { return id_; }
   // Start-up finished and no reboot since.
@@ -105,6 +107,7 @@ class MicroModemDriver final : public link::Driver {
   std::unique_ptr<ModemPort> port_;
   std::vector<ConfigParameter> user_cfg_;
   double time_scale_ = 1;
+  double max_range_m_ = 2000;  // sizes a poll's Nframes (poll_frames.h)
   link::DriverSequence sequence_;  // holds the callbacks between start() and stop()
   ::acomms::micromodem::LineFramer framer_;
   ::acomms::micromodem::LineFramer::Counters framer_seen_;

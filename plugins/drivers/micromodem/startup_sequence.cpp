@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/core_thread.h"
+#include "micromodem/nmea/time_sentences.h"
 
 namespace acomms::drivers::micromodem {
 
@@ -162,6 +163,9 @@ void StartupSequence::set_clock() {
     std::tm utc{};
     gmtime_r(&t, &utc);
     nmea::ClockTime clock{utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec};
+    // MM2 is set with $CCTMS (goby3 does so; §4.5); MM1, and a modem whose
+    // revision was never printed (REV=0), with $CCCLK.
+    if (generation_ == ModemGeneration::kMM2) return set_clock_mm2(clock);
     commands_.push({to_sentence(clock, Talker::kHost), [](const Sentence& s) { return s.is("CACLK"); },
                     [this, alive](bool ok, const Sentence*, const std::string& why) {
                       if (alive.expired()) return;

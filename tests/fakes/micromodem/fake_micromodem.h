@@ -72,6 +72,9 @@ class FakeMicroModem final : public WaterListener {
   // Faults (spec §8.6, §10).
   FaultInjector& faults() { return faults_; }
   void reboot();                        // as after a watchdog: "$CAREV,...,INIT" again
+  // Reboots halfway through the next data packet this modem transmits
+  // (what reaches the water is decided when a packet starts: it arrives).
+  void reboot_mid_next_transmission() { reboot_mid_transmission_ = true; }
   void write_raw(std::string_view bytes);  // straight to the port (noise, overlong lines)
   void report_error(const std::string& module, const std::string& number, const std::string& message);
 
@@ -151,6 +154,7 @@ class FakeMicroModem final : public WaterListener {
   // A third-party poll this modem sent, waiting for the polled packet.
   std::optional<std::pair<uint64_t, int>> awaited_poll_;  // (id, polled address)
   uint64_t next_poll_id_ = 1;
+  bool reboot_mid_transmission_ = false;
 };
 
 }  // namespace acomms::fake_micromodem
