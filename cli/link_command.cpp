@@ -77,8 +77,7 @@ void print_status(const v1::LinkStatusResponse& link) {
     std::map<std::string, uint64_t> kinds(c.bad_input().begin(), c.bad_input().end());
     std::string text;
     for (const auto& [kind, count] : kinds) text += (text.empty() ? "" : ", ") + kind + " " + std::to_string(count);
-    std::printf("bad input:    %s
-", text.c_str());
+    std::printf("bad input:    %s\n", text.c_str());
   }
 }
 

@@ -70,7 +70,7 @@ struct DriverCounters {
   // Input from the modem the driver could not use, by kind (Micro-Modem:
   // "noise" in bytes, "bad checksum", "truncated line", ... in lines);
   // the driver logs it once per burst, these say how much there was.
-  std::map<std::string, uint64_t> bad_input;
+  std::map<std::string, uint64_t> bad_input{};
 
   DriverCounters& operator+=(const DriverCounters& other);
 };
