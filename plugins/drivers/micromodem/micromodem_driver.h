@@ -15,6 +15,7 @@
 //   reception         — $CARXP … $CACST into DATA transmissions
 //   ack_tracker       — the modem's $CAACK into one ACK per packet
 //   bad_input_log     — counted, logged once per burst
+//   poll_frames       — how many frames a poll asks for ($CCCYC Nframes)
 // The DriverSequence (link/driver_sequence.h) makes the decisions every
 // driver shares (data request before the cycle, polls, what on_receive
 // sees); the modem acknowledges in hardware, so software_acks is off.

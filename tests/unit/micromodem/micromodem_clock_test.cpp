@@ -24,8 +24,10 @@ namespace {
 using namespace std::chrono_literals;
 namespace nmea = ::acomms::micromodem;
 
-// An MM2 that boots when the port opens, echoes every $CCCFG, and answers
-// $CCTMS with whatever `answer_time_set` makes of it ("": no answer).
+// An MM2 that boots when the port opens (prints_revision: else it booted
+// before and says nothing), echoes every $CCCFG, answers $CCCFQ,SRC,
+// refuses $CCCLK unless knows_clk, and answers $CCTMS with whatever
+// `answer_time_set` makes of it ("": no answer).
 class ScriptedMm2 final : public ModemPort {
  public:
   ScriptedMm2(core::Scheduler& scheduler, std::function<std::string(const nmea::TimeSet&)> answer_time_set)
@@ -33,6 +35,7 @@ class ScriptedMm2 final : public ModemPort {
   void open(DataCallback on_data, link::TransportStateCallback on_state) override {
     on_data_ = std::make_shared<DataCallback>(std::move(on_data));
     on_state(link::TransportState::kOpen, name());
+    if (!prints_revision) return;
     say("$CAREV,000000,INIT,2.0.27087");
     say("$CAREV,000001,AUV,2.0.27087");
   }
@@ -42,6 +45,12 @@ class ScriptedMm2 final : public ModemPort {
       auto s = nmea::parse_sentence(line);
       if (!s) continue;
       if (s->is("CCCFG")) say(nmea::serialize({"CA", "CFG", s->fields}));
+      if (s->is("CCCFQ") && s->field(1) == "SRC") say("$CACFG,SRC,1");
+      if (s->is("CCCLK")) {
+        ++clock_sets;
+        if (knows_clk) say(nmea::serialize({"CA", "CLK", s->fields}));
+        if (!knows_clk) say("$CAERR,000000,NMEA,3,Unknown command CCCLK");
+      }
       if (s->is("CCTMS")) {
         ++time_sets;
         sent = line;
@@ -53,6 +62,9 @@ class ScriptedMm2 final : public ModemPort {
   }
   std::string name() const override { return "scripted MM2"; }
 
+  bool prints_revision = true;
+  bool knows_clk = true;
+  int clock_sets = 0;
   int time_sets = 0;
   std::string sent;  // the last $CCTMS line
 
@@ -74,13 +86,16 @@ class MicroModemClockTest : public ::testing::Test {
  protected:
   // Starts a driver on a scripted MM2; runs up to 20 s. "" once ready, or
   // the DriverError's text.
-  std::string start_up(std::function<std::string(const nmea::TimeSet&)> answer) {
+  std::string start_up(std::function<std::string(const nmea::TimeSet&)> answer, bool prints_revision = true,
+                       bool knows_clk = true) {
     v1::DriverConfig config;
     config.set_name("micromodem");
     config.set_modem_id(1);
     config.mutable_micromodem()->set_command_timeout_s(1);
     auto port = std::make_unique<ScriptedMm2>(scheduler_, std::move(answer));
     modem_ = port.get();
+    modem_->prints_revision = prints_revision;
+    modem_->knows_clk = knows_clk;
     driver_ = std::make_unique<MicroModemDriver>(config, scheduler_, std::move(port));
     driver_->start({});
     try {
@@ -142,6 +157,20 @@ TEST_F(MicroModemClockTest, NoConfirmationAtAllIsAStartUpErrorNamingTheCommand) 
   std::string error = start_up([](const nmea::TimeSet&) { return std::string(); });
   EXPECT_NE(error.find("the clock was not set ($CCTMS)"), std::string::npos) << error;
   EXPECT_EQ(modem_->time_sets, 3) << "tried three times";
+}
+
+TEST_F(MicroModemClockTest, AModemThatPrintedNoRevisionGetsCcclkThenCctmsWhenItRefusesCcclk) {
+  auto agree = [](const nmea::TimeSet& set) { return reply(false, set.time); };
+  EXPECT_EQ(start_up(agree, /*prints_revision=*/false, /*knows_clk=*/false), "");
+  EXPECT_EQ(modem_->clock_sets, 1) << "refused with $CAERR NMEA: not tried again";
+  EXPECT_EQ(modem_->time_sets, 1);
+}
+
+TEST_F(MicroModemClockTest, AModemThatPrintedNoRevisionAndTakesCcclkIsNotSentCctms) {
+  auto agree = [](const nmea::TimeSet& set) { return reply(false, set.time); };
+  EXPECT_EQ(start_up(agree, /*prints_revision=*/false, /*knows_clk=*/true), "");
+  EXPECT_EQ(modem_->clock_sets, 1);
+  EXPECT_EQ(modem_->time_sets, 0);
 }
 
 }  // namespace
