@@ -146,8 +146,8 @@ TEST_F(MicroModemFaults, TenSecondsOfNoiseAtFullRateAreCountedShownAndNeverStopT
         answered += status.ok() ? 1 : 0;
         return std::chrono::steady_clock::now() >= end;
       },
-      15s, 1000ms);
-  EXPECT_GE(answered, 8);
+      20s, 500ms);
+  EXPECT_GE(answered, 4) << "calls spread over the 10 s";
   ASSERT_TRUE(vehicle.wait_for([&](const auto& r) { return all_delivered(r, 1, seq); }, 90s)) << logs();
   expect_each_once(vehicle.received(), 1, seq);
 
