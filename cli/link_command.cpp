@@ -46,6 +46,7 @@ void print_status(const v1::LinkStatusResponse& link) {
               static_cast<unsigned long long>(driver.failures()));
   if (!driver.summary().empty() && driver.summary() != driver.state()) std::printf("              %s\n", driver.summary().c_str());
   if (!driver.last_error().empty()) std::printf("  last error: %s\n", driver.last_error().c_str());
+  if (!driver.modem().empty()) std::printf("modem:        %s\n", driver.modem().c_str());
   std::printf("mac:          %s", link.mac().empty() ? "none" : link.mac().c_str());
   if (link.cycle_size() > 0) std::printf(", cycle %s s", number_text(link.cycle_seconds()).c_str());
   if (!link.blank_rule().empty()) std::printf(", blank rule %s", link.blank_rule().c_str());

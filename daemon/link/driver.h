@@ -102,6 +102,9 @@ class Driver {
   virtual double sound_speed() const;
   // Losses this driver has seen (see DriverCounters).
   virtual DriverCounters counters() const { return {}; }
+  // The modem as it identified itself (Micro-Modem: "MM2 2.0.27087" from
+  // its $CAREV), for LinkStatus; "" when the driver does not know.
+  virtual std::string modem() const { return ""; }
 };
 
 }  // namespace acomms::link

@@ -92,6 +92,8 @@ class DriverSupervisor final : public Driver {
   double sound_speed() const override;
   // Every driver's counters since the supervisor was built, across restarts.
   DriverCounters counters() const override;
+  // The running driver's (nothing while it is down).
+  std::string modem() const override { return driver_ ? driver_->modem() : ""; }
 
   const DriverStatus& status() const { return status_; }
   // The running driver, or nullptr while it is down (for tests and tools).

@@ -30,6 +30,7 @@ grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatu
     driver->set_last_error(status.last_error);
     driver->set_failures(status.failures);
     driver->set_starts(status.starts);
+    driver->set_modem(node_.link.driver.modem());
 
     const mac::Cycle& cycle = node_.link.mac.cycle();
     std::set<int32_t> known;

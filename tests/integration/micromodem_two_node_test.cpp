@@ -68,6 +68,7 @@ TEST_P(MicroModemTwoNode, ACommandReachesTheVehicleWithLinkFiguresAndTheModemsAc
   EXPECT_TRUE(cleared) << "the modem's ACK did not clear the topside's queue:\n" << net_->daemon_log(2);
   EXPECT_GE(net_->link_status(1).counters().receptions_with_figures(), 1u);
   EXPECT_GE(net_->link_status(2).counters().acks_received(), 1u);
+  EXPECT_EQ(net_->link_status(1).driver().modem(), "MM2 2.0.27087") << "the revision its $CAREV gave";
   // The raw link log, through acommsctl: the vehicle's start-up set SRC 1.
   RunResult raw = net_->raw_log(1);
   EXPECT_EQ(raw.exit_code, 0) << raw.err;

@@ -197,8 +197,7 @@ void MicroModemDriver::on_startup_done(const std::string& error) {
   ready_ = true;
   if (startup_->generation()) generation_ = startup_->generation();
   if (!startup_->revision().empty()) revision_ = startup_->revision();
-  std::string kind = !generation_ ? "Micro-Modem (revision not seen yet)"
-                     : (*generation_ == ModemGeneration::kMM1 ? "MM1 " : "MM2 ") + revision_;
+  std::string kind = modem().empty() ? "Micro-Modem (revision not seen yet)" : modem();
   spdlog::info("{}: {} ready on {} (SRC {})", label_, kind, port_->name(), id_);
 }
 
@@ -400,6 +399,11 @@ link::DriverCounters MicroModemDriver::counters() const {
   link::DriverCounters counters;
   counters.bad_input = bad_input_.counts();
   return counters;
+}
+
+std::string MicroModemDriver::modem() const {
+  if (!generation_) return "";
+  return (*generation_ == ModemGeneration::kMM1 ? "MM1 " : "MM2 ") + revision_;
 }
 
 double MicroModemDriver::sound_speed() const { return link::Driver::sound_speed() * time_scale_; }

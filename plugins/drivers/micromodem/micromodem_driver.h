@@ -68,6 +68,8 @@ class MicroModemDriver final : public link::Driver {
   double sound_speed() const override;
   // What the bad-input log counted (for LinkStatus).
   link::DriverCounters counters() const override;
+  // "MM2 2.0.27087" once a $CAREV said so.
+  std::string modem() const override;
 
   int32_t modem_id() const { return id_; }
   // Start-up finished and no reboot since.
