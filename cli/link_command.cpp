@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,7 @@ void print_status(const v1::LinkStatusResponse& link) {
               static_cast<unsigned long long>(driver.failures()));
   if (!driver.summary().empty() && driver.summary() != driver.state()) std::printf("              %s\n", driver.summary().c_str());
   if (!driver.last_error().empty()) std::printf("  last error: %s\n", driver.last_error().c_str());
+  if (!driver.modem().empty()) std::printf("modem:        %s\n", driver.modem().c_str());
   std::printf("mac:          %s", link.mac().empty() ? "none" : link.mac().c_str());
   if (link.cycle_size() > 0) std::printf(", cycle %s s", number_text(link.cycle_seconds()).c_str());
   if (!link.blank_rule().empty()) std::printf(", blank rule %s", link.blank_rule().c_str());
@@ -72,6 +74,13 @@ void print_status(const v1::LinkStatusResponse& link) {
               static_cast<unsigned long long>(c.malformed_frames()),
               static_cast<unsigned long long>(c.lost_half_duplex()),
               static_cast<unsigned long long>(c.lost_collision()));
+  if (!c.bad_input().empty()) {
+    // Sorted by kind: a map field's order is not defined.
+    std::map<std::string, uint64_t> kinds(c.bad_input().begin(), c.bad_input().end());
+    std::string text;
+    for (const auto& [kind, count] : kinds) text += (text.empty() ? "" : ", ") + kind + " " + std::to_string(count);
+    std::printf("bad input:    %s\n", text.c_str());
+  }
 }
 
 void run_status(const GlobalOptions& global) {

@@ -15,6 +15,7 @@ std::chrono::nanoseconds with_margin(std::chrono::nanoseconds time) {
 DriverCounters& DriverCounters::operator+=(const DriverCounters& other) {
   lost_half_duplex += other.lost_half_duplex;
   lost_collision += other.lost_collision;
+  for (const auto& [kind, count] : other.bad_input) bad_input[kind] += count;
   return *this;
 }
 

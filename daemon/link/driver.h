@@ -30,6 +30,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -67,6 +68,10 @@ inline constexpr double kAirTimeMargin = 0.10;
 struct DriverCounters {
   uint64_t lost_half_duplex = 0;  // arrived while this node transmitted
   uint64_t lost_collision = 0;    // overlapped another packet arriving
+  // Input from the modem the driver could not use, by kind (Micro-Modem:
+  // "noise" in bytes, "bad checksum", "truncated line", ... in lines);
+  // the driver logs it once per burst, these say how much there was.
+  std::map<std::string, uint64_t> bad_input{};
 
   DriverCounters& operator+=(const DriverCounters& other);
 };
@@ -108,6 +113,9 @@ class Driver {
   // the Unix epoch, the driver's clock). Default: kUnimplemented.
   virtual void send_driver_specific(const v1::ModemTransmission& request, double deadline_s,
                                     DriverSpecificDone done);
+  // The modem as it identified itself (Micro-Modem: "MM2 2.0.27087" from
+  // its $CAREV), for LinkStatus; "" when the driver does not know.
+  virtual std::string modem() const { return ""; }
 };
 
 }  // namespace acomms::link

@@ -97,6 +97,8 @@ class DriverSupervisor final : public Driver {
   DriverSpecificResult check_driver_specific(const v1::ModemTransmission& request) const override;
   void send_driver_specific(const v1::ModemTransmission& request, double deadline_s,
                             DriverSpecificDone done) override;
+  // The running driver's (nothing while it is down).
+  std::string modem() const override { return driver_ ? driver_->modem() : ""; }
 
   const DriverStatus& status() const { return status_; }
   // The running driver, or nullptr while it is down (for tests and tools).

@@ -2,6 +2,10 @@
 
 #include <asio/serial_port.hpp>
 #include <spdlog/spdlog.h>
+#include <sys/ioctl.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include "link/stream_session.h"
 
@@ -30,8 +34,21 @@ struct SerialTransport::Impl : StreamSession<Impl, asio::serial_port> {
                         ec);
     }
     if (ec) return fail("cannot set " + std::to_string(settings.baud) + " baud 8N1: " + ec.message());
+    if (settings.clear_rts) clear_rts();
     spdlog::info("serial {}: open at {} baud", settings.device, settings.baud);
     opened();
+  }
+
+  // Before the first read, so no byte arrives garbled (see SerialSettings).
+  void clear_rts() {
+    int rts = TIOCM_RTS;
+    if (::ioctl(stream.native_handle(), TIOCMBIC, &rts) == 0) {
+      spdlog::info("serial {}: RTS de-asserted", settings.device);
+    } else if (errno == ENOTTY || errno == EINVAL) {
+      spdlog::info("serial {}: no RTS line to de-assert ({})", settings.device, std::strerror(errno));
+    } else {
+      spdlog::warn("serial {}: could not de-assert RTS: {}", settings.device, std::strerror(errno));
+    }
   }
 
   void cancel_opening() {}

@@ -22,6 +22,11 @@ struct SerialSettings {
   unsigned baud = 19200;   // the Micro-Modem's default
   unsigned data_bits = 8;  // 8N1, no flow control: what modems speak
   bool hardware_flow_control = false;
+  // De-assert RTS right after every open. Linux asserts RTS (and DTR) when
+  // a tty is opened; the WHOI Micro-Modem 2 garbles its output while RTS
+  // is asserted and its own flow control is off (spec §1, §10 quirk 12).
+  // A port without modem control lines (a pseudo-terminal) is used as is.
+  bool clear_rts = false;
 };
 
 class SerialTransport {

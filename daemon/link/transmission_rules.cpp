@@ -1,5 +1,7 @@
 #include "link/transmission_rules.h"
 
+#include <algorithm>
+
 #include "link/rate_table.h"
 
 namespace acomms::link {
@@ -24,7 +26,11 @@ std::string prepare_data(ModemTransmission* tx, int32_t own_id, uint32_t max_fra
   }
   tx->set_src(own_id);
   tx->set_type(ModemTransmission::DATA);
-  tx->set_max_num_frames(max_num_frames_override ? max_num_frames_override : rate->max_num_frames);
+  uint32_t max_num_frames = max_num_frames_override ? max_num_frames_override : rate->max_num_frames;
+  // A smaller limit the request already carries stands: the answer to a
+  // poll that asked for fewer frames (Micro-Modem Nframes).
+  if (tx->max_num_frames() > 0) max_num_frames = std::min(max_num_frames, tx->max_num_frames());
+  tx->set_max_num_frames(max_num_frames);
   tx->set_max_frame_bytes(max_frame_bytes_override ? max_frame_bytes_override : rate->max_frame_bytes);
   return "";
 }
@@ -73,6 +79,7 @@ ModemTransmission make_poll_response(const ModemTransmission& poll, int32_t own_
   out.set_type(ModemTransmission::DATA);
   out.set_ack_requested(poll.ack_requested());
   if (poll.has_slot_seconds()) out.set_slot_seconds(poll.slot_seconds());
+  if (poll.max_num_frames() > 0) out.set_max_num_frames(poll.max_num_frames());  // no more than it asked for
   // A poll as heard has the time its reception ended; the master's slot
   // began a mini-packet before that, and one travel time before that
   // again, which the link's slot budget allows for (link_controller.h).

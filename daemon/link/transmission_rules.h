@@ -27,7 +27,8 @@ bool is_poll_request(const v1::ModemTransmission& request, int32_t own_id);
 
 // Prepares our own DATA transmission for the data request: src, type,
 // max_num_frames and max_frame_bytes (the overrides when nonzero, else the
-// rate table). Returns an error ("rate 9 is not in 0..5") or "".
+// rate table; a smaller max_num_frames the request already carries stays).
+// Returns an error ("rate 9 is not in 0..5") or "".
 std::string prepare_data(v1::ModemTransmission* transmission, int32_t own_id,
                          uint32_t max_frame_bytes_override = 0, uint32_t max_num_frames_override = 0);
 
@@ -42,7 +43,7 @@ v1::ModemTransmission make_ack(const v1::ModemTransmission& received, int32_t ow
 // A received transmission: is it a poll asking us to send?
 bool is_poll_for(const v1::ModemTransmission& received, int32_t own_id);
 // What a polled node sends: its own DATA to the poll's dest, at its rate,
-// with the poll's slot_seconds and, when the poll has a time (the end of
+// with the poll's slot_seconds and max_num_frames and, when the poll has a time (the end of
 // its reception), time = the start of its reception (kMiniPacket earlier).
 v1::ModemTransmission make_poll_response(const v1::ModemTransmission& poll, int32_t own_id);
 

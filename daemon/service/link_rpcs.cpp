@@ -30,6 +30,7 @@ grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatu
     driver->set_last_error(status.last_error);
     driver->set_failures(status.failures);
     driver->set_starts(status.starts);
+    driver->set_modem(node_.link.driver.modem());
 
     const mac::Cycle& cycle = node_.link.mac.cycle();
     std::set<int32_t> known;
@@ -58,6 +59,7 @@ grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatu
     const link::DriverCounters lost = node_.link.driver.counters();
     counters->set_lost_half_duplex(lost.lost_half_duplex);
     counters->set_lost_collision(lost.lost_collision);
+    for (const auto& [kind, count] : lost.bad_input) (*counters->mutable_bad_input())[kind] = count;
     counters->set_receptions_with_figures(stats.receptions_with_figures);
     counters->set_bad_frames_received(stats.bad_frames_received);
   });

@@ -16,6 +16,7 @@
 #include "micromodem/nmea/ranging_sentences.h"
 #include "micromodem/nmea/receive_sentences.h"
 #include "micromodem/nmea/statistics_sentences.h"
+#include "micromodem/nmea/time_sentences.h"
 
 namespace {
 
@@ -43,6 +44,8 @@ void check_typed(const Sentence& s) {
   typed_round_trip<ConfigQuery>(s, parse_config_query, plain);
   typed_round_trip<ClockTime>(s, parse_clock_time, with_talker);
   typed_round_trip<Revision>(s, parse_revision, plain);
+  typed_round_trip<TimeSet>(s, parse_time_set, plain);
+  typed_round_trip<TimeSetReply>(s, parse_time_set_reply, plain);
   typed_round_trip<Cycle>(s, parse_cycle, with_talker);
   typed_round_trip<DataRequest>(s, parse_data_request, plain);
   typed_round_trip<TransmitData>(s, parse_transmit_data, plain);

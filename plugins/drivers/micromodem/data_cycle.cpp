@@ -79,8 +79,9 @@ std::string DataCycle::start(const v1::ModemTransmission& tx, bool polled) {
   x.transmission = tx;
   if (polled) {
     x.kind = Kind::kPolled;
-    x.cycle = {0, own_id_, std::max(0, tx.dest()), tx.rate(), tx.ack_requested(),
-               static_cast<int>(rate.max_num_frames)};
+    // Nframes of the poll heard (the limit the queues were given).
+    uint32_t frames = tx.max_num_frames() > 0 ? std::min(tx.max_num_frames(), rate.max_num_frames) : rate.max_num_frames;
+    x.cycle = {0, own_id_, std::max(0, tx.dest()), tx.rate(), tx.ack_requested(), static_cast<int>(frames)};
   } else if (tx.src() != own_id_) {
     // Third-party cycle: node src sends to dest (us when the MAC left it open).
     x.kind = Kind::kPoll;

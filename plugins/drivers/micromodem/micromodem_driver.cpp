@@ -10,6 +10,7 @@
 #include "micromodem/nmea/cycle_sentences.h"
 #include "micromodem/nmea/receive_sentences.h"
 #include "micromodem/nmea/statistics_sentences.h"
+#include "micromodem/poll_frames.h"
 
 namespace acomms::drivers::micromodem {
 
@@ -79,6 +80,7 @@ MicroModemDriver::MicroModemDriver(const v1::DriverConfig& config, core::Schedul
       port_(std::move(port)),
       user_cfg_(user_cfg_of(config)),
       time_scale_(scale_of(config)),
+      max_range_m_(cycle_timeouts(config).max_range_m),
       sequence_({label_, id_, 0, 0, /*software_acks=*/false},
                 {[this](const ModemTransmission& tx, bool report) { return send(tx, report); }}),
       bad_input_(label_),
@@ -180,7 +182,15 @@ std::string MicroModemDriver::send(const ModemTransmission& tx, bool) {
   if (!ready_) return "the modem is not ready (start-up in progress)";
   if (!commands_.idle()) return "busy: a command to the modem is waiting for its reply";
   if (!extras_.idle()) return "busy: a driver-specific exchange (ping, LBL, ...) is in progress";
-  return cycle_.start(tx, answering_poll_);
+  if (tx.src() == id_ || answering_poll_) return cycle_.start(tx, answering_poll_);
+  // A third-party cycle: Nframes sized for what is left of the slot.
+  v1::ModemTransmission poll = tx;
+  poll.set_max_num_frames(poll_frames(*this, tx, scheduler_.clock().now(), max_range_m_));
+  if (poll.max_num_frames() == 0) {
+    return "the slot has no room left for node " + std::to_string(tx.src()) + "'s answer at rate " +
+           std::to_string(tx.rate());
+  }
+  return cycle_.start(poll, false);
 }
 
 void MicroModemDriver::on_port_state(link::TransportState state, const std::string& detail) {
@@ -218,8 +228,7 @@ void MicroModemDriver::on_startup_done(const std::string& error) {
   ready_ = true;
   if (startup_->generation()) generation_ = startup_->generation();
   if (!startup_->revision().empty()) revision_ = startup_->revision();
-  std::string kind = !generation_ ? "Micro-Modem (revision not seen yet)"
-                     : (*generation_ == ModemGeneration::kMM1 ? "MM1 " : "MM2 ") + revision_;
+  std::string kind = modem().empty() ? "Micro-Modem (revision not seen yet)" : modem();
   spdlog::info("{}: {} ready on {} (SRC {})", label_, kind, port_->name(), id_);
 }
 
@@ -289,7 +298,7 @@ void MicroModemDriver::dispatch(const Sentence& s) {
   if (s.talker == "CA") {
     const std::string& t = s.type;
     if (t == "REV") return on_revision(s);
-    if (t == "CFG" || t == "CLK") {
+    if (t == "CFG" || t == "CLK" || t == "TMS") {
       commands_.on_sentence(s);  // else a line of a dump, or a late echo
       return;
     }
@@ -351,7 +360,7 @@ void MicroModemDriver::dispatch(const Sentence& s) {
     }
     // Known and not needed by a data driver (clock and device queries,
     // ping/LBL/mini-packet echoes, MM2 clock reports).
-    static const char* const kIgnored[] = {"TMS", "TMQ", "TMG", "ALQ", "CLQ", "MPC", "MPA", "MPR", "MUC", "MUA",
+    static const char* const kIgnored[] = {"TMQ", "TMG", "ALQ", "CLQ", "MPC", "MPA", "MPR", "MUC", "MUA",
                                            "MUR", "MEC", "MEA", "MER", "MSC", "MSA", "MSR", "TDP", "RDP", "CDR",
                                            "DQF", "DOP", "MFD", "SHF", "SNR", "TOA", "RXA", "TXA"};
     for (const char* ignored : kIgnored) {
@@ -394,6 +403,7 @@ void MicroModemDriver::answer_poll(const nmea::Cycle& cycle) {
   poll.set_dest(cycle.destination);
   poll.set_rate(cycle.rate);
   poll.set_ack_requested(cycle.ack);
+  poll.set_max_num_frames(polled_frames(cycle.rate, cycle.frames));  // Nframes: what the master asked for
   poll.set_time(now_seconds());
   answering_poll_ = true;
   sequence_.on_received(poll);
@@ -416,6 +426,17 @@ std::chrono::nanoseconds MicroModemDriver::packet_air_time(int32_t rate, uint32_
 
 std::chrono::nanoseconds MicroModemDriver::ack_time(int32_t rate) const {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(link::Driver::ack_time(rate) / time_scale_);
+}
+
+link::DriverCounters MicroModemDriver::counters() const {
+  link::DriverCounters counters;
+  counters.bad_input = bad_input_.counts();
+  return counters;
+}
+
+std::string MicroModemDriver::modem() const {
+  if (!generation_) return "";
+  return (*generation_ == ModemGeneration::kMM1 ? "MM1 " : "MM2 ") + revision_;
 }
 
 double MicroModemDriver::sound_speed() const { return link::Driver::sound_speed() * time_scale_; }

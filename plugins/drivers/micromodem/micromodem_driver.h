@@ -17,6 +17,7 @@
 //   bad_input_log     — counted, logged once per burst
 //   driver_specific_exchange — ping, LBL, mini-packets, FDP (spec §6-§7);
 //                       its sentences are routed in micromodem_driver_specific.cpp
+//   poll_frames       — how many frames a poll asks for ($CCCYC Nframes)
 // The DriverSequence (link/driver_sequence.h) makes the decisions every
 // driver shares (data request before the cycle, polls, what on_receive
 // sees); the modem acknowledges in hardware, so software_acks is off.
@@ -73,6 +74,10 @@ class MicroModemDriver final : public link::Driver {
   void send_driver_specific(const v1::ModemTransmission& request, double deadline_s,
                             link::DriverSpecificDone done) override;
   const DriverSpecificExchange::Counters& driver_specific_counters() const { return extras_.counters(); }
+  // What the bad-input log counted (for LinkStatus).
+  link::DriverCounters counters() const override;
+  // "MM2 2.0.27087" once a $CAREV said so.
+  std::string modem() const override;
 
   int32_t modem_id() const { return id_; }
   // Start-up finished and no reboot since.
@@ -115,6 +120,7 @@ class MicroModemDriver final : public link::Driver {
   std::unique_ptr<ModemPort> port_;
   std::vector<ConfigParameter> user_cfg_;
   double time_scale_ = 1;
+  double max_range_m_ = 2000;  // sizes a poll's Nframes (poll_frames.h)
   link::DriverSequence sequence_;  // holds the callbacks between start() and stop()
   ::acomms::micromodem::LineFramer framer_;
   ::acomms::micromodem::LineFramer::Counters framer_seen_;

@@ -10,9 +10,6 @@ namespace {
 
 constexpr std::string_view kTcpPrefix = "tcp:";
 
-// Not done here: clearing RTS after opening a real MM2 serial port (spec
-// §1, §10 quirk 12) needs the port's descriptor, which SerialTransport does
-// not expose; a modem on a gateway (the usual MM2 set-up) is unaffected.
 class SerialPort final : public ModemPort {
  public:
   SerialPort(asio::io_context& context, link::SerialSettings settings)
@@ -59,6 +56,10 @@ std::unique_ptr<ModemPort> transport_port(const std::string& port, unsigned baud
   link::SerialSettings settings;
   settings.device = port;
   settings.baud = baud == 0 ? 19200 : baud;
+  // MM2 garbles its output while RTS is asserted (spec §1, §10 quirk 12).
+  // Which modem it is shows only after the port is open, and an MM1 with
+  // flow control off (the driver never turns it on) ignores RTS: so always.
+  settings.clear_rts = true;
   return std::make_unique<SerialPort>(context, settings);
 }
 

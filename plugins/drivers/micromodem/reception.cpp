@@ -46,7 +46,9 @@ Reception::Reception(std::function<double()> now_seconds, Deliver deliver)
     : now_seconds_(std::move(now_seconds)), deliver_(std::move(deliver)) {}
 
 Reception::Record& Reception::open() {
-  if (!record_) record_.emplace();
+  // emplace(Record()), not emplace(): clang decides Record (nested, with a
+  // default member initializer) is not default-constructible.
+  if (!record_) record_.emplace(Record());
   return *record_;
 }
 
@@ -55,7 +57,7 @@ void Reception::on_receive_started() {
   // A packet detected while another is unfinished: that one's $CACST is
   // not coming (CST=0, or a line lost); close it with what it has.
   if (record_) close(nullptr);
-  record_.emplace();
+  record_.emplace(Record());
 }
 
 void Reception::on_cycle(const nmea::Cycle& cycle) {

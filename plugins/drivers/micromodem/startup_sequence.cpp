@@ -149,22 +149,34 @@ void StartupSequence::write_next(size_t index) {
 }
 
 void StartupSequence::set_clock() {
+  // MM2 is set with $CCTMS (goby3 does so; §4.5), MM1 with $CCCLK. A modem
+  // whose revision was not printed (REV=0, or it booted before the port
+  // opened) gets $CCCLK and, if it refuses that, $CCTMS.
+  set_clock_at_next_second(generation_ == ModemGeneration::kMM2, !generation_);
+}
+
+void StartupSequence::set_clock_at_next_second(bool time_set, bool fall_back) {
   // Just after a UTC second boundary, carrying the next second (spec §4.5).
   using namespace std::chrono;
   auto now = scheduler_.clock().now();
   auto next_second = time_point_cast<seconds>(now) + seconds(1);
   auto send_at = next_second + milliseconds(50);
   std::weak_ptr<bool> alive = alive_;
-  timer_ = scheduler_.at(send_at, [this, alive, next_second] {
+  timer_ = scheduler_.at(send_at, [this, alive, next_second, time_set, fall_back] {
     timer_ = 0;
     auto carried = next_second + seconds(1);
     std::time_t t = system_clock::to_time_t(time_point_cast<system_clock::duration>(carried));
     std::tm utc{};
     gmtime_r(&t, &utc);
     nmea::ClockTime clock{utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec};
+    if (time_set) return set_clock_mm2(clock);
     commands_.push({to_sentence(clock, Talker::kHost), [](const Sentence& s) { return s.is("CACLK"); },
-                    [this, alive](bool ok, const Sentence*, const std::string& why) {
+                    [this, alive, fall_back](bool ok, const Sentence*, const std::string& why) {
                       if (alive.expired()) return;
+                      if (!ok && fall_back) {
+                        spdlog::info("start-up: $CCCLK not taken ({}); trying $CCTMS (MM2)", why);
+                        return set_clock_at_next_second(true, false);
+                      }
                       if (!ok) return fail("the clock was not set: " + why);
                       finished_ = true;
                       done_("");

@@ -13,8 +13,11 @@
 //   2. write SRC = own id, then the settings the driver relies on
 //      (driver_settings()), then the user's cfg list, one at a time, each
 //      confirmed by its `$CACFG` echo (name and value);
-//   3. set the clock with `$CCCLK` carrying the next UTC second, sent just
-//      after a second boundary (goby3's way, §4.5) and confirmed by `$CACLK`.
+//   3. set the clock, carrying the next UTC second, sent just after a
+//      second boundary (goby3's way, §4.5): `$CCCLK` confirmed by `$CACLK`
+//      on MM1, `$CCTMS` confirmed by `$CATMS` on MM2 (startup_clock.cpp);
+//      a modem that printed no revision gets `$CCCLK`, then `$CCTMS` if
+//      it refuses that.
 // A setting the modem refuses (or never confirms) ends the start-up with an
 // error naming it. Writing every value (rather than querying first) costs
 // ~0.1 s per setting and keeps the sequence simple.
@@ -73,6 +76,8 @@ class StartupSequence {
   void write_settings();
   void write_next(size_t index);
   void set_clock();
+  void set_clock_at_next_second(bool time_set, bool fall_back);
+  void set_clock_mm2(const ::acomms::micromodem::ClockTime& carried);  // startup_clock.cpp
   void fail(const std::string& why);
 
   CommandQueue& commands_;

@@ -74,6 +74,9 @@ class FakeMicroModem final : public WaterListener {
   // Faults (spec §8.6, §10).
   FaultInjector& faults() { return faults_; }
   void reboot();                        // as after a watchdog: "$CAREV,...,INIT" again
+  // Reboots halfway through the next data packet this modem transmits
+  // (what reaches the water is decided when a packet starts: it arrives).
+  void reboot_mid_next_transmission() { reboot_mid_transmission_ = true; }
   void write_raw(std::string_view bytes);  // straight to the port (noise, overlong lines)
   void report_error(const std::string& module, const std::string& number, const std::string& message);
 
@@ -167,6 +170,7 @@ class FakeMicroModem final : public WaterListener {
   std::optional<int> awaited_ping_;
   core::Clock::time_point listening_until_{};  // an LBL interrogation's Timeout
   uint64_t next_fdp_id_ = 1;
+  bool reboot_mid_transmission_ = false;
 };
 
 }  // namespace acomms::fake_micromodem

@@ -177,6 +177,10 @@ void FakeMicroModem::transmit(const AcousticPacket& packet, Duration air, std::f
   }
   ++counters_.transmissions;
   water_.transmit(this, packet, air);
+  if (reboot_mid_transmission_ && !packet.is_mini()) {
+    reboot_mid_transmission_ = false;
+    later(air / 2, [this] { reboot(); });
+  }
   later(air, [this, packet, bytes, after = std::move(after)] {
     if (nvram_.flag("TXF")) emit(to_sentence(TransmitFinished{bytes}));
     int frames = static_cast<int>(packet.frames.size());

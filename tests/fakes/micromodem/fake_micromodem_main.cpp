@@ -26,6 +26,7 @@
 #include "fake_micromodem.h"
 #include "fault_console.h"
 #include "host_ports.h"
+#include "line_console.h"
 #include "scaled_scheduler.h"
 #include "udp_water_bus.h"
 
@@ -129,6 +130,7 @@ int main(int argc, char** argv) {
   std::vector<std::unique_ptr<PtyPort>> ptys;
   std::vector<std::unique_ptr<TcpPort>> tcps;
   std::map<int, FakeMicroModem*> by_address;
+  std::map<int, TcpPort*> tcp_by_address;
   try {
     for (size_t i = 0; i < modem_specs.size(); ++i) {
       FakeModemConfig config = parse_modem(modem_specs[i]);
@@ -146,6 +148,7 @@ int main(int argc, char** argv) {
       } else {
         uint16_t port = tcp_base_port == 0 ? 0 : static_cast<uint16_t>(tcp_base_port + i);
         auto& tcp = tcps.emplace_back(std::make_unique<TcpPort>(context, *modem, port));
+        tcp_by_address[config.address] = tcp.get();
         std::cout << "modem " << config.address << " " << name << " tcp 127.0.0.1:" << tcp->port() << std::endl;
       }
     }
@@ -156,6 +159,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   for (auto& modem : modems) modem->power_on();
+  LineConsole line_console(context, by_address, tcp_by_address);
 
   asio::posix::stream_descriptor console(context, ::dup(0));
   asio::streambuf input;
@@ -165,7 +169,10 @@ int main(int argc, char** argv) {
       std::istream stream(&input);
       std::string line;
       std::getline(stream, line);
-      if (!line.empty()) std::cout << run_fault_command(line, by_address) << std::endl;
+      if (!line.empty()) {
+        std::optional<std::string> answer = line_console.run(line);
+        std::cout << (answer ? *answer : run_fault_command(line, by_address)) << std::endl;
+      }
       read_command();
     });
   };

@@ -30,6 +30,8 @@ std::string run_fault_command(const std::string& line, const std::map<int, FakeM
     modem.report_error(module, number, message);
   } else if (command == "reset") {
     modem.reboot();
+  } else if (command == "reset-mid-tx") {
+    modem.reboot_mid_next_transmission();
   } else if (command == "silent") {
     std::string state;
     in >> state;

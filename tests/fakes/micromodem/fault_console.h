@@ -8,6 +8,7 @@
 //   <address> unknown             a well-formed sentence nobody knows
 //   <address> error <module> <number> <message...>   a $CAERR
 //   <address> reset               reboot ($CAREV,...,INIT)
+//   <address> reset-mid-tx        reboot halfway through its next data packet
 //   <address> silent on|off       stop / resume all output
 //   <address> move <x> <y> <z>    new position, metres
 

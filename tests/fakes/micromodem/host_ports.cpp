@@ -64,6 +64,24 @@ TcpPort::TcpPort(asio::io_context& context, FakeMicroModem& modem, uint16_t port
     asio::write(*client_, asio::buffer(bytes.data(), bytes.size()), error);
     if (error) client_.reset();
   });
+  port_ = acceptor_.local_endpoint().port();
+  accept();
+}
+
+void TcpPort::unplug() {
+  std::error_code ignored;
+  acceptor_.close(ignored);
+  if (client_) client_->close(ignored);
+  client_.reset();
+}
+
+void TcpPort::plug() {
+  if (acceptor_.is_open()) return;
+  asio::ip::tcp::endpoint endpoint(asio::ip::make_address("127.0.0.1"), port_);
+  acceptor_.open(endpoint.protocol());
+  acceptor_.set_option(asio::ip::tcp::acceptor::reuse_address(true));
+  acceptor_.bind(endpoint);
+  acceptor_.listen();
   accept();
 }
 

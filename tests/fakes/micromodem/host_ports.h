@@ -44,13 +44,19 @@ class TcpPort {
  public:
   // Listens on 127.0.0.1:`port` (0: any free port; see port()).
   TcpPort(asio::io_context& context, FakeMicroModem& modem, uint16_t port);
-  uint16_t port() const { return acceptor_.local_endpoint().port(); }
+  uint16_t port() const { return port_; }
+  // The gateway goes away (listener and connection closed: the host sees
+  // its connection end and new ones refused) and comes back on the same
+  // port. The modem behind it keeps running.
+  void unplug();
+  void plug();
 
  private:
   void accept();
   void read();
   FakeMicroModem& modem_;
   asio::ip::tcp::acceptor acceptor_;
+  uint16_t port_ = 0;
   std::shared_ptr<asio::ip::tcp::socket> client_;
   std::array<char, 1024> buffer_{};
 };

@@ -52,7 +52,10 @@ struct Node {
     callbacks.on_receive = [this](const ModemTransmission& tx) { received.push_back(tx); };
     callbacks.on_data_request = [this](ModemTransmission* tx) {
       ++data_requests;
-      for (const std::string& frame : frames_to_send) tx->add_frame(frame);
+      last_max_num_frames = tx->max_num_frames();
+      for (const std::string& frame : frames_to_send) {
+        if (static_cast<uint32_t>(tx->frame_size()) < tx->max_num_frames()) tx->add_frame(frame);  // as the queues do
+      }
       if (tx->dest() < 0) tx->set_dest(0);
     };
     callbacks.on_transmit_result = [this](const ModemTransmission& tx, bool ok, const std::string& error) {
@@ -100,6 +103,7 @@ struct Node {
   std::vector<Result> results;
   std::vector<std::string> frames_to_send;
   int data_requests = 0;
+  uint32_t last_max_num_frames = 0;
 };
 
 ModemTransmission data_to(int src, int dest, int rate) {
@@ -168,7 +172,10 @@ TEST_F(MicroModemDriverTest, StartUpOnAnMm2SetsSrcTheDriversSettingsTheUsersCfgA
   EXPECT_EQ(lines[0], micromodem::serialize({"CC", "CFG", {"SRC", "3"}}));
   EXPECT_EQ(lines[9], micromodem::serialize({"CC", "CFG", {"BND", "3"}}));  // upper-cased
   EXPECT_EQ(lines[10], micromodem::serialize({"CC", "CFG", {"psk.packet.mod_hdr_version", "0"}}));
-  EXPECT_TRUE(lines[11].starts_with("$CCCLK,2023,11,14,"));  // 1'700'000'000 s is 2023-11-14
+  // MM2: the clock by $CCTMS, the next second, no external pulse (§4.5).
+  EXPECT_TRUE(lines[11].starts_with("$CCTMS,2023-11-14T")) << lines[11];  // 1'700'000'000 s is 2023-11-14
+  EXPECT_NE(lines[11].find("Z,0*"), std::string::npos) << lines[11];
+  EXPECT_EQ(node.written.find("$CCCLK"), std::string::npos) << "MM2 is not set with $CCCLK";
 }
 
 TEST_F(MicroModemDriverTest, StartUpOnAnMm1ReadsItsRevision) {
@@ -180,6 +187,8 @@ TEST_F(MicroModemDriverTest, StartUpOnAnMm1ReadsItsRevision) {
   ASSERT_TRUE(node.driver->ready());
   EXPECT_EQ(node.driver->generation(), ModemGeneration::kMM1);
   EXPECT_EQ(node.driver->revision(), "0.94.0.04");
+  EXPECT_NE(node.written.find("$CCCLK,2023,11,14,"), std::string::npos) << "MM1 is set with $CCCLK";
+  EXPECT_EQ(node.written.find("$CCTMS"), std::string::npos) << "MM1 does not know $CCTMS";
 }
 
 TEST_F(MicroModemDriverTest, AModemThatBootedBeforeThePortOpenedIsProbedWithCfqSrc) {
@@ -290,6 +299,64 @@ TEST_F(MicroModemDriverTest, Transcript83BroadcastIsNeverAcknowledged) {
   EXPECT_TRUE(b_->received_of(ModemTransmission::ACK).empty());
 }
 
+// ------------------------------------------------- a poll's Nframes (§5.1)
+
+// The master sizes Nframes for what is left of its slot once the poll's
+// cycle-init has reached the polled node (poll_frames.h). At rate 1 with
+// the default 2000 m: head start 1.32 s (mini-packet and turnaround, +10%)
+// + 1.33 s travel; a packet of n frames then needs air(n) (0.3 s + 2.048 s
+// a frame, +10%: 2.58, 4.84, 7.09 s) + 1.33 s travel + 1.32 s ACK + 1.33 s
+// travel. So n frames need a slot of 9.2, 11.5 and 13.7 s.
+TEST_F(MicroModemDriverTest, APollAsksForTheFramesThatFitWhatIsLeftOfItsSlot) {
+  two_nodes();
+  b_->frames_to_send = {"one", "two", "three"};
+  for (auto [slot_seconds, nframes] : {std::pair{12.0, 2}, std::pair{14.0, 3}, std::pair{10.0, 1}}) {
+    a_->set_mark();
+    b_->set_mark();
+    ModemTransmission poll = data_to(2, 1, 1);
+    poll.set_slot_seconds(slot_seconds);
+    poll.set_time(std::chrono::duration<double>(scheduler_.clock().now().time_since_epoch()).count());
+    a_->driver->initiate_transmission(poll);
+    run(20s);
+    std::vector<std::string> lines = a_->host_lines_since_mark();
+    ASSERT_EQ(lines.size(), 1u) << slot_seconds << " s";
+    EXPECT_EQ(lines[0], micromodem::serialize({"CC", "CYC", {"0", "2", "1", "1", "1", std::to_string(nframes)}}))
+        << slot_seconds << " s";
+    EXPECT_EQ(b_->last_max_num_frames, static_cast<uint32_t>(nframes)) << "the polled node's queues were asked for "
+                                                                          "Nframes at most";
+    auto data = a_->received_of(ModemTransmission::DATA);
+    ASSERT_FALSE(data.empty());
+    EXPECT_EQ(data.back().frame_size(), nframes);
+  }
+}
+
+TEST_F(MicroModemDriverTest, APollWhoseAnswerCannotFitItsSlotIsNotSent) {
+  two_nodes();
+  ModemTransmission poll = data_to(2, 1, 1);
+  poll.set_slot_seconds(9);
+  poll.set_time(std::chrono::duration<double>(scheduler_.clock().now().time_since_epoch()).count());
+  a_->driver->initiate_transmission(poll);
+  ASSERT_EQ(a_->results.size(), 1u);
+  EXPECT_FALSE(a_->results[0].ok);
+  EXPECT_NE(a_->results[0].error.find("no room left for node 2's answer"), std::string::npos) << a_->results[0].error;
+  run(2s);
+  EXPECT_TRUE(a_->host_lines_since_mark().empty());
+}
+
+TEST_F(MicroModemDriverTest, APolledNodeSendsNoMoreThanTheNframesItWasAskedFor) {
+  two_nodes();
+  b_->frames_to_send = {"one", "two", "three"};
+  // Written by hand: the $CCCYC of a master that asks node 2 for 1 frame.
+  a_->modem.from_host(micromodem::serialize({"CC", "CYC", {"0", "2", "1", "1", "1", "1"}}) + "\r\n");
+  run(20s);
+  EXPECT_EQ(b_->last_max_num_frames, 1u);
+  EXPECT_EQ(b_->host_lines_since_mark(), (std::vector<std::string>{micromodem::serialize({"CC", "TXD", {"2", "1", "1", "6F6E65"}})}));
+  auto data = a_->received_of(ModemTransmission::DATA);
+  ASSERT_EQ(data.size(), 1u);
+  ASSERT_EQ(data[0].frame_size(), 1);
+  EXPECT_EQ(data[0].frame(0), "one");
+}
+
 // ------------------------------------------------------------ data exchange
 
 TEST_F(MicroModemDriverTest, TwoDriversExchangePskDataAndTheModemsAcksReachTheSenderAsOneAck) {
@@ -391,7 +458,7 @@ TEST_F(MicroModemDriverTest, AModemRebootMidTransmissionFailsItReappliesSettings
   ASSERT_TRUE(a_->driver->ready());
   std::string since = a_->written.substr(a_->mark);
   EXPECT_NE(since.find("$CCCFG,SRC,1*"), std::string::npos) << "settings applied again";
-  EXPECT_NE(since.find("$CCCLK,"), std::string::npos) << "the clock set again";
+  EXPECT_NE(since.find("$CCTMS,"), std::string::npos) << "the clock set again";
   a_->driver->initiate_transmission(data_to(1, 2, 1));
   run(15s);
   ASSERT_EQ(a_->results.size(), 2u);
