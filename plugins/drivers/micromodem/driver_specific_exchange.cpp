@@ -180,7 +180,9 @@ void DriverSpecificExchange::send(const ModemTransmission& request, double deadl
   }
   DriverSpecificResult checked = check(request);
   if (checked.status != DriverSpecificStatus::kOk) return done(std::move(checked));
-  current_.emplace();
+  // emplace(Current()), not emplace(): clang decides Current (nested, with
+  // default member initializers) is not default-constructible (see reception.cpp).
+  current_.emplace(Current());
   current_->request = request;
   current_->ask = request.GetExtension(drivers::micromodem_transmission);
   current_->done = std::move(done);
