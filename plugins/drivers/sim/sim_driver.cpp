@@ -95,6 +95,13 @@ SimDriver::SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler,
 
 SimDriver::~SimDriver() { stop(); }
 
+SimPosition SimDriver::position() const {
+  if (position_source_ != nullptr) {
+    if (std::optional<core::NodeFix> fix = position_source_->latest()) return SimPosition{fix->x, fix->y, fix->z};
+  }
+  return position_;
+}
+
 void SimDriver::start(link::DriverCallbacks callbacks) {
   stop();
   sequence_.start(std::move(callbacks));
@@ -193,7 +200,7 @@ std::string SimDriver::transmit(ModemTransmission tx, bool report_result) {
   for (auto& [key, arrival] : arrivals_) {
     if (overlap(arrival.interval.start, arrival.interval.end, interval.start, interval.end)) arrival.deaf = true;
   }
-  SimEnvelope envelope{id_, position_, now, air_time, tx};
+  SimEnvelope envelope{id_, position(), now, air_time, tx};
   ++stats_.sent;
   if (sequence_.callbacks().on_raw) sequence_.callbacks().on_raw(encode(envelope), true);
   if (medium_) {
@@ -210,7 +217,7 @@ std::string SimDriver::transmit(ModemTransmission tx, bool report_result) {
 void SimDriver::hear(const SimEnvelope& envelope) {
   ACOMMS_ASSERT_CORE_THREAD();
   if (!sequence_.running() || envelope.sender == id_) return;
-  std::optional<SimHearing> heard = hearing(envelope, position_, sound_speed_);
+  std::optional<SimHearing> heard = hearing(envelope, position(), sound_speed_);
   if (!heard) {
     spdlog::debug("sim modem {}: packet from {} too far to arrive", id_, envelope.sender);
     return;

@@ -52,6 +52,7 @@
 
 #include "acomms/v1/config.pb.h"
 #include "core/scheduler.h"
+#include "core/node_position.h"
 #include "link/driver.h"
 #include "link/driver_sequence.h"
 #include "link/rate_table.h"
@@ -93,9 +94,15 @@ class SimDriver final : public link::Driver {
   link::DriverCounters counters() const override;
 
   int32_t modem_id() const { return id_; }
-  const SimPosition& position() const { return position_; }
+  // Where the node is now: the newest navigation fix when a position source
+  // is set and has one, else the last set_position (the config's at start).
+  SimPosition position() const;
   // Moves the node (a vehicle under way); later transmissions see it there.
   void set_position(const SimPosition& position) { position_ = position; }
+  // Takes the node's position from the navigation input (SubmitNavigation,
+  // core/node_position.h): a moving simulated vehicle needs nothing else.
+  // `source` must outlive the driver; null: back to set_position.
+  void set_position_source(const core::NodePosition* source) { position_source_ = source; }
   const SimStats& stats() const;
   // Loss probability at range `range_m` (see the file comment).
   double loss_probability(double range_m) const;
@@ -133,6 +140,7 @@ class SimDriver final : public link::Driver {
 
   int32_t id_;
   SimPosition position_;
+  const core::NodePosition* position_source_ = nullptr;
   double sound_speed_;
   double loss_probability_;
   double max_range_m_;

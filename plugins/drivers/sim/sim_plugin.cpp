@@ -6,14 +6,18 @@ namespace acomms::drivers {
 namespace {
 
 const link::DriverRegistrar registrar("sim", [](const link::DriverContext& context) -> std::unique_ptr<link::Driver> {
-  return std::make_unique<SimDriver>(context.config, context.scheduler, context.io_context);
+  auto driver = std::make_unique<SimDriver>(context.config, context.scheduler, context.io_context);
+  driver->set_position_source(context.node_position);
+  return driver;
 });
 
 }  // namespace
 
 void register_sim_channel_driver(link::DriverRegistry& registry, std::shared_ptr<SimChannel> channel) {
   registry.add("sim", [channel](const link::DriverContext& context) -> std::unique_ptr<link::Driver> {
-    return std::make_unique<SimDriver>(context.config, context.scheduler, channel);
+    auto driver = std::make_unique<SimDriver>(context.config, context.scheduler, channel);
+    driver->set_position_source(context.node_position);
+    return driver;
   });
 }
 
