@@ -80,7 +80,7 @@ void Daemon::start() {
   core_->start();
   core_->call([this, &telemetry_stored] {
     // Before the link: the streams must be where the store says first.
-    telemetry_->restore(telemetry_stored, *events_);
+    telemetry_->restore(telemetry_stored, *events_, *queues_);
     schedule_expiry();
     retention_->start();
     link_->start();  // the supervisor retries a driver that fails to start

@@ -2,9 +2,10 @@
 -- that a daemon killed at any moment continues the stream, and the track a
 -- receiver reconstructed (acommsctl track).
 --
--- A sender's row is written in the same store queue as, and before, the
--- message it describes: a crash never leaves a queued message the state
--- does not know of (telemetry/stream_sender.h).
+-- A sender's row is written in the same store queue as, and after, the
+-- message it describes: the stored state is never ahead of the queue, and
+-- at start a stream continues after the newest sequence still queued
+-- (telemetry/stream_sender.h).
 CREATE TABLE telemetry_sender (
   receiver INTEGER PRIMARY KEY NOT NULL,  -- modem id
   state BLOB NOT NULL

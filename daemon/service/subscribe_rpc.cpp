@@ -14,10 +14,12 @@
 //  3. Replay ends when a read finds nothing newer; `cursor` is then the
 //     last seq written. Live messages with seq <= cursor were replayed
 //     already and are skipped; the rest are newer, in order.
-// INVARIANT: the seqs written to one stream strictly increase.
+// INVARIANT: the seqs written to one stream strictly increase (but for
+// seq 0, telemetry's Positions, which are not in the event log).
 #include <spdlog/spdlog.h>
 
 #include "service/acomms_service.h"
+#include "service/position_message.h"
 #include "service/message_json.h"
 #include "service/rpc_status.h"
 
@@ -56,7 +58,8 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
   {
     auto stable = node_.submitter.types_stable();
     for (const std::string& type : request->types()) {
-      if (node_.codec.find_type(type) == nullptr) {
+      // Position is what telemetry publishes, not a DCCL type.
+      if (node_.codec.find_type(type) == nullptr && type != kPositionType) {
         return type_not_loaded(type);
       }
       filter.types.insert(type);
@@ -110,9 +113,11 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
   }
   while (!gone && !context->IsCancelled()) {
     if (std::optional<v1::ReceivedMessage> message = subscription->next(kPollCancel)) {
-      if (message->seq() <= cursor) continue;  // replayed already (seam step 3)
+      // seq 0: not a message of the event log (a telemetry Position), never
+      // replayed, so never at the seam.
+      if (message->seq() != 0 && message->seq() <= cursor) continue;  // replayed already (seam step 3)
       if (!writer->Write(*message)) break;  // the client went away
-      cursor = message->seq();
+      if (message->seq() != 0) cursor = message->seq();
       continue;
     }
     if (std::optional<grpc::Status> ended = subscription->ended()) {

@@ -28,6 +28,14 @@ WireMessage StreamSender::send(const Sample& sample) {
   return message;
 }
 
+void StreamSender::continue_after(uint32_t sequence) {
+  if (sequence_distance(sequence, sequence_) > 0) {
+    sequence_ = sequence % kWireSequenceModulus;
+    // The encoder's state does not include that message.
+    encoder_.request_full();
+  }
+}
+
 std::string StreamSender::state() const {
   StateWriter out;
   out.put(kStateVersion, 1);

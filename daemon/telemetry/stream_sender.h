@@ -2,13 +2,15 @@
 // The sending end of one telemetry stream on the link (to one receiver):
 // the library's encoder plus the 12-bit wire sequence (wire_message.h).
 //
-// Restart rule: state() is stored before the message it describes is
-// queued, in the same store queue, so after a crash the stored state is
-// never behind a queued message; it may be one message ahead (stored, then
-// killed before the message was), which costs nothing: the receiver sees a
-// gap in the sequence it never has to fill, because the first message
-// after any restart is a full (the sampler starts a new segment), and a
-// full does not depend on anything before it. At most one full per restart.
+// Restart rule: state() is stored after the message it describes is queued,
+// in the same store queue (which commits in order), so after a crash the
+// stored state is never ahead of the queue: no sequence number is skipped,
+// and the receiver never waits for a message that does not exist. It may
+// be behind (the message stored, the kill before the state): the daemon
+// then continues after the newest sequence still queued (continue_after),
+// and the first message after any restart is a full (the sampler starts a
+// new segment), which does not depend on the encoder state the crash lost.
+// At most one full per restart.
 //
 // Core thread (one stream, one thread).
 
@@ -38,6 +40,10 @@ class StreamSender {
   bool restore(std::string_view state);
 
   uint32_t last_sequence() const { return sequence_; }
+  // After a restart: `sequence` is queued (sent before the stored state was
+  // written), so the next message follows it. Ignored when not newer than
+  // last_sequence().
+  void continue_after(uint32_t sequence);
   int32_t dest() const { return dest_; }
 
  private:

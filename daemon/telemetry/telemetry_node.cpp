@@ -35,12 +35,28 @@ StoredStreams TelemetryNode::read_state(store::Database& db) {
   return stored;
 }
 
-void TelemetryNode::restore(const StoredStreams& stored, queue::EventLogReader& events) {
+void TelemetryNode::restore(const StoredStreams& stored, queue::EventLogReader& events,
+                            const queue::QueueManager& queues) {
   ACOMMS_ASSERT_CORE_THREAD();
   for (auto& [receiver, sender] : senders_) {
     auto it = stored.senders.find(receiver);
     if (it != stored.senders.end() && !sender.restore(it->second)) {
       spdlog::warn("telemetry to {}: stored state unusable (another telemetry config?): starting over", receiver);
+    }
+  }
+  // A kill between a message's commit and its state's leaves the state one
+  // behind the queue: continue after the newest sequence queued.
+  for (std::string_view type : {kFullType, kDeltaType}) {
+    const queue::Queue* queue = queues.find_queue(std::string(type));
+    if (queue == nullptr) continue;
+    for (const queue::QueuedMessage& queued : queue->messages()) {
+      auto sender = senders_.find(queued.record.dest);
+      if (sender == senders_.end()) continue;
+      try {
+        sender->second.continue_after(from_dccl(*codec_.decode_as(type, queued.encoded)).sequence);
+      } catch (const std::exception& e) {
+        spdlog::warn("telemetry: queued message {} unreadable ({}): left to the queue", queued.record.id, e.what());
+      }
     }
   }
   for (const auto& [src, state] : stored.receivers) {
@@ -97,16 +113,6 @@ size_t TelemetryNode::on_fix(const Fix& fix) {
         spdlog::warn("telemetry: sample at {} s not sent: {}", sample.time_s, e.what());
         break;
       }
-      // The state first: the writer commits in order, so the store never
-      // holds a message its stream state does not know of.
-      std::string state = sender.state();
-      writer_.post([this, receiver = receiver, state = std::move(state)](store::Database&) {
-        store::Statement& save =
-            writer_.prepared("INSERT OR REPLACE INTO telemetry_sender (receiver, state) VALUES (?, ?)");
-        save.bind(1, int64_t{receiver}).bind_blob(2, state);
-        save.step();
-        save.reset();
-      });
       if (message.kind == MessageKind::kFull) ++counters_.fulls_sent;
       submit_(to_dccl(codec_, message), [this, receiver = receiver](bool ok) {
         ACOMMS_ASSERT_CORE_THREAD();
@@ -115,6 +121,16 @@ size_t TelemetryNode::on_fix(const Fix& fix) {
         // The receiver will never see it: whatever follows must not depend on it.
         auto it = senders_.find(receiver);
         if (it != senders_.end()) it->second.request_full();
+      });
+      // The state after the message: the writer commits in order, so the
+      // stored state is never ahead of the queue (restore() handles behind).
+      std::string state = sender.state();
+      writer_.post([this, receiver = receiver, state = std::move(state)](store::Database&) {
+        store::Statement& save =
+            writer_.prepared("INSERT OR REPLACE INTO telemetry_sender (receiver, state) VALUES (?, ?)");
+        save.bind(1, int64_t{receiver}).bind_blob(2, state);
+        save.step();
+        save.reset();
       });
       ++counters_.messages_queued;
       ++queued;

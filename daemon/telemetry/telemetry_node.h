@@ -9,9 +9,11 @@
 //
 // The decisions:
 // - Sender: each stream's state (stream_sender.h) is posted to the store
-//   writer before its message is submitted; the writer commits in order,
-//   so a queued message is never newer than the stored state. After a
-//   restart the sampler starts a new segment: the first sample is a full.
+//   writer after its message is submitted; the writer commits in order,
+//   so the stored state is never ahead of the queue (no phantom gap for the
+//   receiver to wait on); at start each stream continues after the newest
+//   sequence its queue still holds. After a restart the sampler starts a
+//   new segment: the first sample is a full.
 // - Receiver: the queue logs every received message (event log, with its
 //   bytes) before it reaches us; each stream's state, the positions it
 //   produced and the seq of the last event consumed (telemetry_progress)
@@ -79,9 +81,11 @@ class TelemetryNode {
 
   // Before the writer starts on `db`.
   static StoredStreams read_state(store::Database& db);
-  // Brings the streams back, then consumes the received telemetry events
-  // the state does not cover yet. Core thread, before the link starts.
-  void restore(const StoredStreams& stored, queue::EventLogReader& events);
+  // Brings the streams back (senders continue after what `queues` still
+  // holds for them), then consumes the received telemetry events the state
+  // does not cover yet. Core thread, after the queues restored, before the
+  // link starts.
+  void restore(const StoredStreams& stored, queue::EventLogReader& events, const queue::QueueManager& queues);
 
   // A navigation fix in local metres (z up). Samples it and queues a
   // message per receiver for each sample. Returns the messages queued.
