@@ -32,7 +32,7 @@ inline constexpr int kFullId = 110;
 inline constexpr int kDeltaId = 111;
 inline constexpr uint32_t kWireSequenceModulus = 4096;
 // The largest bodies messages.proto allows (max_repeat).
-inline constexpr size_t kMaxFullBodyBits = 255;
+inline constexpr size_t kMaxFullBodyBits = 127;
 inline constexpr size_t kMaxDeltaBodyBits = 127;
 
 struct WireMessage {

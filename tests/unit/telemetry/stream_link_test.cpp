@@ -131,6 +131,33 @@ TEST(StreamLinkTest, SenderRestartedFromItsStateCostsOneFull) {
   expect_positions(got, sent, config);
 }
 
+// Killed after a message was stored but before its stream state was: the
+// restarted sender continues after the newest queued sequence, so the
+// receiver gets no number twice and waits for none that does not exist.
+TEST(StreamLinkTest, SenderStateBehindTheQueueContinuesAfterTheNewestQueued) {
+  TelemetryConfig config;
+  const std::vector<Sample> samples = track_samples(eval::TrackKind::kAuv, 12, 3600, config.tau_s);
+  StreamSender before(config, 2, 1);
+  StreamReceiver receiver(config, 2, 1800);
+  std::vector<Sent> sent = send_all(before, {samples.begin(), samples.begin() + 100});
+  const std::string stored = before.state();  // then one more message was queued, its state lost
+  sent.push_back({before.send(samples[100]), samples[100]});
+  StreamSender after(config, 2, 1);
+  ASSERT_TRUE(after.restore(stored));
+  after.continue_after(sent.back().message.sequence);
+  after.continue_after(sent[50].message.sequence);  // older queued ones change nothing
+  std::vector<Sample> rest(samples.begin() + 101, samples.end());
+  rest.front().new_segment = true;
+  std::vector<Sent> more = send_all(after, rest);
+  EXPECT_EQ(more.front().message.sequence, (sent.back().message.sequence + 1) % kWireSequenceModulus);
+  EXPECT_EQ(more.front().message.kind, MessageKind::kFull);
+  sent.insert(sent.end(), more.begin(), more.end());
+  std::vector<ReceivedPosition> got;
+  for (const Sent& s : sent) append(&got, receiver.receive(s.message, static_cast<double>(s.sample.time_s)));
+  expect_positions(got, sent, config);
+  EXPECT_EQ(receiver.held(), 0u);
+}
+
 TEST(StreamLinkTest, SenderThatLostItsStateIsFollowedFromItsNextFull) {
   TelemetryConfig config;
   const std::vector<Sample> samples = track_samples(eval::TrackKind::kGlider, 2, 8 * 3600, config.tau_s);
