@@ -110,15 +110,25 @@ void StreamReceiver::consume(const WireMessage& message, double now, std::vector
   }
   DecodedMessage decoded;
   try {
-    decoded = decoder_.decode(library_bytes(message));
-  } catch (const std::exception& e) {
-    // dccl::Error / TruncatedRead: bits that are not a message of this
-    // config (another config at the sender, or damage).
-    ++counters_.undecodable;
-    in_step_ = false;
-    decoder_.restore({});
-    spdlog::warn("telemetry from {}: message {} does not decode ({}): waiting for the next full", src_,
-                 message.sequence, e.what());
+    const std::string bytes = library_bytes(message);
+    dccl::BitReader in(bytes);
+    decoded = decoder_.decode(in);
+    // The body must end exactly where the decoder stopped: fewer bits were
+    // padding read as code, more were not part of this message. Either
+    // way it was not what the sender coded.
+    if (in.position() != kHeaderBits + message.body.size()) {
+      undecodable(message, "the body does not end where its codeword does");
+      return;
+    }
+  } catch (const dccl::Error& e) {
+    // Bits that are not a message of this config (another config at the
+    // sender, or damage).
+    undecodable(message, e.what());
+    return;
+  } catch (const dccl::TruncatedRead&) {
+    // Not derived from std::exception: the codeword's bits ended before
+    // the decoder was sure of a symbol (found by telemetry_receiver_fuzz).
+    undecodable(message, "the body ends inside the codeword");
     return;
   }
   if (decoded.outcome != DecodeOutcome::kPosition) {
@@ -139,6 +149,14 @@ void StreamReceiver::consume(const WireMessage& message, double now, std::vector
   last_time_s_ = position.time_s;
   ++counters_.positions;
   out->push_back(position);
+}
+
+void StreamReceiver::undecodable(const WireMessage& message, const char* why) {
+  ++counters_.undecodable;
+  in_step_ = false;
+  decoder_.restore({});
+  spdlog::warn("telemetry from {}: message {} does not decode ({}): waiting for the next full", src_,
+               message.sequence, why);
 }
 
 std::string StreamReceiver::state() const {

@@ -74,6 +74,8 @@ class StreamReceiver {
   };
   void consume(const WireMessage& message, double now, std::vector<ReceivedPosition>* out);
   void release(double now, std::vector<ReceivedPosition>* out);
+  // A body that did not decode: out of step until the next full.
+  void undecodable(const WireMessage& message, const char* why);
   // A held full past a gap older than the timeout, if any.
   std::optional<uint32_t> timed_out_full(double now) const;
   // A full's time, placed in the day nearest `now`.

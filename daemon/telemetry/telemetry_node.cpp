@@ -97,6 +97,12 @@ void TelemetryNode::restore(const StoredStreams& stored, queue::EventLogReader& 
 size_t TelemetryNode::on_fix(const Fix& fix) {
   ACOMMS_ASSERT_CORE_THREAD();
   std::vector<Sample> samples = sampler_.add(fix);  // throws for a non-finite field
+  // The sampler ignores a fix that does not move time forward.
+  if (last_fix_time_s_ && fix.time_s <= *last_fix_time_s_) {
+    ++counters_.fixes_ignored;
+    return 0;
+  }
+  last_fix_time_s_ = fix.time_s;
   ++counters_.fixes;
   if (position_) position_->set(core::NodeFix{fix.time_s, fix.position_m[0], fix.position_m[1], fix.position_m[2]});
   size_t queued = 0;

@@ -31,6 +31,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,7 @@ struct StoredStreams {
 
 struct NodeCounters {
   uint64_t fixes = 0;
+  uint64_t fixes_ignored = 0;  // time not after the previous fix
   uint64_t samples = 0;
   uint64_t samples_outside_region = 0;
   uint64_t messages_queued = 0;
@@ -113,6 +115,7 @@ class TelemetryNode {
   std::map<int32_t, StreamSender> senders_;
   std::map<int32_t, StreamReceiver> receivers_;
   int64_t last_event_seq_ = 0;
+  std::optional<double> last_fix_time_s_;
   NodeCounters counters_;
 };
 

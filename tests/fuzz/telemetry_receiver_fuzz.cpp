@@ -47,7 +47,7 @@ std::vector<WireMessage> real_stream(const TelemetryConfig& config) {
     sample.time_s = static_cast<int64_t>(kNow) + n * static_cast<int64_t>(config.tau_s);
     const double s = n * 10.0;
     sample.position_m = {n < 40 ? 1.5 * s : 600 - 0.4 * (s - 400), n < 40 ? 3.0 : 1.4 * (s - 400),
-                         -20 - 10 * ((n / 7) % 2)};
+                         -20.0 - 10.0 * ((n / 7) % 2)};
     if (n == 55) sample.position_m[0] += 100;  // a GPS jump
     out.push_back(sender.send(sample));
   }

@@ -182,10 +182,12 @@ TEST_F(TelemetryTwoNode, TrackIsCompleteInOrderAndExactThroughLossAndKillsOfEach
     EXPECT_TRUE(p.full());
   }
   // 2. SIGKILL the vehicle with its stream in flight.
+  RecordProperty("positions_at_vehicle_kill", track().positions_size());
   kill9_and_restart(1);
   feed_with_api(kMinute + 1, 2 * kMinute);
   ASSERT_TRUE(wait_for_track(kMinute + 20, 90s)) << daemons_[1]->stderr_text();
   // 3. SIGKILL the topside with the stream in flight.
+  RecordProperty("positions_at_topside_kill", track().positions_size());
   kill9_and_restart(2);
   feed_with_api(2 * kMinute + 1, 3 * kMinute);
   const int all = 3 * kMinute + 1;
@@ -210,6 +212,7 @@ TEST_F(TelemetryTwoNode, TrackIsCompleteInOrderAndExactThroughLossAndKillsOfEach
   // costs none (it continues from its store and event log).
   EXPECT_LE(fulls, 3);
   EXPECT_GE(fulls, 2);
+  RecordProperty("fulls", fulls);
 
   // acommsctl track prints the same track.
   RunResult csv = run(ACOMMSCTL_BINARY, {"--socket", socket(2), "track", "1", "--csv"}, (dir_ / "track").string());
