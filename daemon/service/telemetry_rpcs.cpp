@@ -1,5 +1,6 @@
 // SubmitNavigation and Track: position telemetry's way in and out.
 #include <cmath>
+#include <future>
 #include <string>
 
 #include "service/acomms_service.h"
@@ -73,6 +74,20 @@ grpc::Status AcommsService::SubmitNavigation(grpc::ServerContext*, grpc::ServerR
     ++index;
   }
   response->set_ignored_fixes(index - response->accepted_fixes());
+  // Answered once what the fixes queued is on disk: a client that saw the
+  // answer knows a kill now loses none of it.
+  std::promise<std::exception_ptr> stored;
+  std::future<std::exception_ptr> done = stored.get_future();
+  node_.core.call([&] {
+    node_.telemetry.when_stored([&stored](std::exception_ptr error) { stored.set_value(error); });
+  });
+  if (std::exception_ptr error = done.get()) {
+    try {
+      std::rethrow_exception(error);
+    } catch (const std::exception& e) {
+      return grpc::Status(grpc::StatusCode::UNAVAILABLE, std::string("telemetry messages not stored: ") + e.what());
+    }
+  }
   return grpc::Status::OK;
 }
 

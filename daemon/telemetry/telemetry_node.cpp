@@ -145,6 +145,12 @@ size_t TelemetryNode::on_fix(const Fix& fix) {
   return queued;
 }
 
+void TelemetryNode::when_stored(std::function<void(std::exception_ptr)> stored) {
+  // The writer commits in order: an empty request's commit follows every
+  // request queued before it.
+  writer_.post([](store::Database&) {}, std::move(stored));
+}
+
 StreamReceiver& TelemetryNode::receiver_for(int32_t src) {
   auto it = receivers_.find(src);
   if (it == receivers_.end()) it = receivers_.try_emplace(src, settings_.stream, src, settings_.gap_timeout_s).first;

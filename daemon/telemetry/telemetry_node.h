@@ -94,6 +94,10 @@ class TelemetryNode {
   // Throws std::invalid_argument for a non-finite field.
   size_t on_fix(const Fix& fix);
 
+  // `stored` runs (on the store writer's thread) once everything queued so
+  // far, messages and stream states, is committed, with why not if not.
+  void when_stored(std::function<void(std::exception_ptr)> stored);
+
   // A message the queue received (any type: others are ignored).
   void on_received(const queue::ReceivedMessage& message);
 

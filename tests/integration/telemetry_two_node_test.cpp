@@ -31,7 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-constexpr double kSlotSeconds = 3;
+constexpr double kSlotSeconds = 2.5;
 constexpr int kMinute = 60;
 
 // The vehicle's track: a lawnmower-like run with a turn and a yo-yo in
@@ -87,6 +87,9 @@ class TelemetryTwoNode : public ::testing::Test {
            << "grpc { unix_socket: \"" << socket(id) << "\" }\n"
            << "driver { name: \"sim\" modem_id: " << id << " sim { loss_probability: 0.25 seed: " << 40 + id
            << " listen: \"127.0.0.1:" << port_[id] << "\" peers: \"127.0.0.1:" << port_[3 - id] << "\" } }\n"
+           // A 2.5 s slot at rate 5 carries one 256-byte frame, about 36
+           // messages: a minute of track takes two of the vehicle's slots,
+           // so each kill lands with part of it still queued.
            << "mac { name: \"fixed\" slot { src: 1 rate: 5 seconds: " << kSlotSeconds
            << " } slot { src: 2 rate: 5 seconds: " << kSlotSeconds << " } max_range_m: 400 }\n"
            // No periodic full within the test: every full is the start's or a restart's.
