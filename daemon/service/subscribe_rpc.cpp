@@ -20,6 +20,7 @@
 
 #include "service/acomms_service.h"
 #include "service/position_message.h"
+#include "telemetry/wire_message.h"
 #include "service/message_json.h"
 #include "service/rpc_status.h"
 
@@ -102,6 +103,12 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
         for (const queue::StoredReceived& stored : page) messages.push_back(from_store(stored, node_.codec));
       }
       for (const v1::ReceivedMessage& message : messages) {
+        // Telemetry's own messages are never published live (their content
+        // comes out as Position): not replayed either.
+        if (telemetry::is_telemetry_type(message.type())) {
+          cursor = message.seq();
+          continue;
+        }
         if (!writer->Write(message)) {
           gone = true;
           break;
