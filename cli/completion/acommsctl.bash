@@ -20,7 +20,7 @@ _acommsctl() {
   for ((i = 1; i < COMP_CWORD; i++)); do
     word="${COMP_WORDS[i]}"
     case "${path:+$path }$word" in
-      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link raw"|"link cycle"|"events"|"nav"|"track"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"completion") path="${path:+$path }$word" ;;
+      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link raw"|"link cycle"|"events"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"sim depth-adaptation"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"completion") path="${path:+$path }$word" ;;
     esac
   done
   case "$path" in
@@ -32,7 +32,7 @@ _acommsctl() {
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "status defs send sub queue link events nav track dccl sim gram completion --help -h --socket -s --timeout --json --ca --cert --key --insecure --version" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "status defs send sub queue link events dccl sim gram completion --help -h --socket -s --timeout --json --ca --cert --key --insecure --version" -- "$cur")) ;;
     "status")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -181,25 +181,6 @@ _acommsctl() {
         --since|--until|--message|--limit|--timeout) COMPREPLY=(); return ;;
       esac
       COMPREPLY=($(compgen -W "--help -h --since --until --kind --type --message --limit --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
-    "nav")
-      case "$prev" in
-        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --timeout) COMPREPLY=(); return ;;
-      esac
-      COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
-    "track")
-      case "$prev" in
-        --kml) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --since|--timeout) COMPREPLY=(); return ;;
-      esac
-      COMPREPLY=($(compgen -W "--help -h --since --csv --kml --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "dccl")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -250,7 +231,7 @@ _acommsctl() {
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "queue-market mac-discovery telemetry --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "queue-market mac-discovery telemetry depth-adaptation --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "sim queue-market")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -278,6 +259,16 @@ _acommsctl() {
         --track|--generate|--duration|--observer|--model|--tau|--precision|--speed|--sigma-j2|--r|--bounds|--full-every|--loss|--packet-bits|--seed|--timeout) COMPREPLY=(); return ;;
       esac
       COMPREPLY=($(compgen -W "--help -h --track --generate --duration --observer --model --tau --precision --speed --sigma-j2 --r --bounds --full-every --loss --packet-bits --seed --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "sim depth-adaptation")
+      case "$prev" in
+        --png) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --env|--model-env|--buoy-depth|--start-range|--max-range|--speed|--interval|--rate|--depths|--start-depth|--vertical-speed|--tau-a|--h-max|--min-depth|--max-depth|--min-altitude|--bin|--range-step|--depth-step|--laps|--seed|--threads|--source-level|--noise-level|--sea-state|--band|--shipping|--snr50|--slope|--timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "--help -h --env --model-env --png --buoy-depth --start-range --max-range --speed --interval --rate --depths --start-depth --vertical-speed --tau-a --h-max --min-depth --max-depth --min-altitude --bin --range-step --depth-step --laps --seed --threads --source-level --noise-level --sea-state --band --shipping --snr50 --slope --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "gram")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;

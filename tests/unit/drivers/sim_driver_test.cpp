@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "link/rate_table.h"
+#include "sim/navigation_position.h"
 #include "sim_test_node.h"
 
 namespace acomms::drivers {
@@ -55,12 +56,13 @@ TEST_F(SimDriverTest, ArrivesAfterRangeOverSoundSpeedPlusAirTime) {
 }
 
 // A moving vehicle: the node's position comes from its navigation input
-// (core::NodePosition, fed by SubmitNavigation), so the range, and the
+// (core::NodePosition, fed by SubmitNavigation, as sim_plugin.cpp wires it),
+// so the range, and the
 // arrival time, follow the newest fix.
 TEST_F(SimDriverTest, PositionSourceMovesTheNodeForLaterTransmissions) {
   TestNode a(scheduler_, channel_, 1, 0), b(scheduler_, channel_, 2, 1500);
   core::NodePosition navigation;
-  a.driver->set_position_source(&navigation);
+  a.driver->set_position_source(std::make_shared<NavigationPosition>(&navigation, a.driver->position()));
   EXPECT_EQ(a.driver->position().x, 0);  // no fix yet: the config's position
   navigation.set(core::NodeFix{1'700'000'000, 1500, 1500, -20});
   EXPECT_EQ(a.driver->position().y, 1500);
