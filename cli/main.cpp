@@ -12,6 +12,8 @@
 #include "dccl_command.h"
 #include "defs_command.h"
 #include "events_command.h"
+#include "nav_command.h"
+#include "track_command.h"
 #include "global_options.h"
 #include "gram_command.h"
 #include "link_command.h"
@@ -36,6 +38,8 @@ void add_commands(CLI::App& app, const acomms::cli::GlobalOptions& options) {
   add_queue_command(app, options);
   add_link_command(app, options);
   add_events_command(app, options);
+  add_nav_command(app, options);
+  add_track_command(app, options);
   add_dccl_command(app, options);
   add_sim_command(app, options);
   add_gram_command(app);

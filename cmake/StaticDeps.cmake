@@ -77,6 +77,8 @@ acomms_pkg_static_libs(_grpc_libs grpc++)
 acomms_static_target(acomms::grpc LIBS grpc++_reflection ${_grpc_libs} protobuf)
 acomms_static_target(acomms::cryptopp LIBS cryptopp)
 acomms_static_target(acomms::sqlite3 LIBS sqlite3 m dl)
+# WGS84 <-> local metres for position telemetry's datum (daemon/telemetry).
+acomms_static_target(acomms::geographiclib LIBS GeographicLib)
 
 # Header-only libraries. spdlog's Debian build expects an external fmt; both
 # are used in header-only mode so that nothing needs their shared objects.

@@ -8,6 +8,7 @@
 #include "core/systemd_notify.h"
 #include "mac/mac_factory.h"
 #include "message_definitions.h"
+#include "service/position_message.h"
 #include "service/received_message.h"
 
 namespace acomms {
@@ -37,9 +38,17 @@ queue::RetentionPolicy retention_policy(const v1::StoreConfig& store) {
 }  // namespace
 
 void Daemon::start() {
+  const auto own_id = static_cast<int32_t>(config_.driver().modem_id());
+  try {
+    telemetry_settings_ = telemetry::node_settings(config_.telemetry(), own_id);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
+  telemetry::configure_queues(config_.mutable_queue(), telemetry_settings_);
   store_ = std::make_unique<store::Store>(config_.data_dir());
   std::vector<service::RecordedDefinition> api_definitions =
       service::DefinitionLoader::read_recorded(store_->db());
+  const telemetry::StoredStreams telemetry_stored = telemetry::TelemetryNode::read_state(store_->db());
   // From here on only the writer's thread touches the store's connection.
   writer_ = std::make_unique<store::GroupCommitWriter>(store_->db());
   journal_ = std::make_unique<queue::SqliteJournal>(*writer_);
@@ -62,13 +71,16 @@ void Daemon::start() {
       *queues_, [core = core_.get()](std::function<void()> work) { core->post(std::move(work)); });
   expiry_timer_ = std::make_unique<asio::steady_timer>(core_->context());
   build_link();
+  build_telemetry(telemetry_stored);
   retention_ = std::make_unique<queue::EventLogRetention>(
       *writer_, *scheduler_, retention_policy(config_.store()), [queues = queues_.get()](double now) {
         // What the duplicate filter reads back at the next start stays.
         return now - queues->duplicate_window_s();
       });
   core_->start();
-  core_->call([this] {
+  core_->call([this, &telemetry_stored] {
+    // Before the link: the streams must be where the store says first.
+    telemetry_->restore(telemetry_stored, *events_, *queues_);
     schedule_expiry();
     retention_->start();
     link_->start();  // the supervisor retries a driver that fails to start
@@ -83,7 +95,7 @@ void Daemon::start() {
   identity.modem_id = config_.driver().modem_id();
   api_ = std::make_unique<service::AcommsService>(
       std::move(identity), service::Node{*codec_, *queues_, *submitter_, *core_, {*mac_, *driver_, *link_},
-                                         *definitions_, *events_, subscribers_});
+                                         *definitions_, *events_, subscribers_, *telemetry_, *track_});
 
   server_ = std::make_unique<service::GrpcServer>(
       service::endpoints_of(config_.grpc()),
@@ -114,7 +126,7 @@ void Daemon::build_link() {
     for (const auto& n : known) list += (list.empty() ? "" : ", ") + n;
     throw std::runtime_error("driver.name \"" + name + "\" is not a driver (known: " + list + ")");
   }
-  link::DriverContext context{config_.driver(), *scheduler_, &core_->context()};
+  link::DriverContext context{config_.driver(), *scheduler_, &core_->context(), &node_position_};
   // Built once now so that a bad driver block is a start-up error.
   try {
     (void)drivers_.create(name, context);
@@ -127,7 +139,7 @@ void Daemon::build_link() {
   options.driver_name = name;
   driver_ = std::make_unique<link::DriverSupervisor>(
       [this, name] {
-        link::DriverContext context{config_.driver(), *scheduler_, &core_->context()};
+        link::DriverContext context{config_.driver(), *scheduler_, &core_->context(), &node_position_};
         return drivers_.create(name, context);
       },
       *scheduler_, options);
@@ -139,6 +151,12 @@ void Daemon::build_link() {
   link_ = std::make_unique<link::LinkController>(
       own_id, *queues_, *mac_, *driver_, [this](queue::ReceivedMessage message, const v1::ModemTransmission& from) {
         spdlog::debug("received {} from {} (transmission from {})", message.type, message.src, from.src());
+        // Telemetry's messages are bits of a stream, not news for a
+        // subscriber: what they carry comes out as Position.
+        if (telemetry::is_telemetry_type(message.type)) {
+          telemetry_->on_received(message);
+          return;
+        }
         // Published only once its event (and so its seq) is committed: a
         // subscriber must never hold a number that a crash could hand out
         // again, and a replay must find every message published before it
@@ -169,6 +187,29 @@ void Daemon::build_link() {
   }
 }
 
+// Telemetry sends through the Submit path (durable before queued) and
+// publishes what it reconstructs as acomms.telemetry.Position.
+void Daemon::build_telemetry(const telemetry::StoredStreams& /*stored*/) {
+  const auto own_id = static_cast<int32_t>(config_.driver().modem_id());
+  auto submit = [this](std::unique_ptr<google::protobuf::Message> message, std::function<void(bool)> done) {
+    std::shared_ptr<google::protobuf::Message> owned(std::move(message));
+    submitter_->submit(*owned, 0, [this, owned, done = std::move(done)](queue::SubmitResult result) {
+      if (!result.ok()) spdlog::warn("telemetry: {} not queued: {}", owned->GetTypeName(), result.text);
+      // The result may come on any thread; the stream is the core's.
+      core_->post([done, ok = result.ok()] { done(ok); });
+    });
+  };
+  auto publish = [this, own_id](const std::vector<telemetry::ReceivedPosition>& positions) {
+    for (const telemetry::ReceivedPosition& p : positions) {
+      subscribers_.publish(
+          service::to_received_message(service::to_position(p, telemetry_settings_), own_id, clock_.now_seconds()));
+    }
+  };
+  telemetry_ = std::make_unique<telemetry::TelemetryNode>(telemetry_settings_, own_id, *codec_, *writer_,
+                                                           &node_position_, submit, publish);
+  track_ = std::make_unique<telemetry::TrackReader>(store_->db().path());
+}
+
 // Messages expire on time even when no transmission comes to notice them.
 void Daemon::schedule_expiry() {
   expiry_timer_->expires_after(std::chrono::seconds(1));
@@ -192,6 +233,16 @@ void Daemon::stop() {
   subscribers_.close();
   if (server_) server_->shutdown(std::chrono::seconds(2));
   server_.reset();
+  // Telemetry's messages are submitted from the core thread and answered
+  // back on it: let those in flight finish while the core still runs.
+  if (core_ && writer_ && writer_->running()) {
+    try {
+      writer_->flush();
+    } catch (const std::exception& e) {
+      spdlog::warn("store writer: last commit before stopping failed: {}", e.what());
+    }
+    core_->call([] {});
+  }
   if (core_) core_->stop();
   link_.reset();
   mac_.reset();
@@ -213,6 +264,9 @@ void Daemon::stop() {
   }
   journal_.reset();
   writer_.reset();
+  // After the writer: its last requests were telemetry's.
+  telemetry_.reset();
+  track_.reset();
   retention_.reset();  // after the writer: a step in flight refers to it
   codec_.reset();
   events_.reset();

@@ -29,6 +29,9 @@
 #include "service/definition_loader.h"
 #include "service/subscriber_hub.h"
 #include "store/store.h"
+#include "core/node_position.h"
+#include "telemetry/telemetry_node.h"
+#include "telemetry/track_reader.h"
 
 namespace acomms {
 
@@ -52,6 +55,7 @@ class Daemon {
   void start();
   void schedule_expiry();
   void build_link();
+  void build_telemetry(const telemetry::StoredStreams& stored);
 
   v1::Config config_;
   core::SystemClock clock_;
@@ -78,6 +82,12 @@ class Daemon {
   std::unique_ptr<link::LinkController> link_;
   // Prunes the event log on the core thread's schedule, on the writer.
   std::unique_ptr<queue::EventLogRetention> retention_;
+  // Position telemetry (core thread): navigation in, streams out, received
+  // streams to positions; the node's newest fix for the sim driver.
+  telemetry::NodeSettings telemetry_settings_;
+  core::NodePosition node_position_;
+  std::unique_ptr<telemetry::TelemetryNode> telemetry_;
+  std::unique_ptr<telemetry::TrackReader> track_;
   std::unique_ptr<service::AcommsService> api_;
   std::unique_ptr<service::GrpcServer> server_;
 };

@@ -17,6 +17,7 @@
 #include "core/logging.h"
 #include "daemon.h"
 #include "link/slot_check.h"
+#include "telemetry/node_settings.h"
 #include "service/tls_certificates.h"
 
 namespace {
@@ -77,6 +78,8 @@ int main(int argc, char** argv) {
   if (!check_path.empty()) {
     try {
       acomms::v1::Config checked = acomms::core::load_config_file(check_path);
+      // The telemetry section's bounds, as the start would check them.
+      (void)acomms::telemetry::node_settings(checked.telemetry(), static_cast<int32_t>(checked.driver().modem_id()));
       // Slots too short for one frame are a warning: the config still works.
       for (const std::string& warning :
            acomms::link::short_slot_warnings(checked, acomms::link::DriverRegistry::linked())) {

@@ -37,6 +37,14 @@ std::unique_ptr<dccl::Codec> make_codec(const v1::DcclConfig& config) {
     throw std::runtime_error(std::string("dccl.") + e.what());
   }
   std::vector<std::string> include_dirs(config.include_dirs().begin(), config.include_dirs().end());
+  // Position telemetry's types, always, and first: their ids are reserved,
+  // so a user type claiming one is refused naming both.
+  try {
+    codec->load("acomms/telemetry/messages.proto");
+  } catch (const dccl::Error& e) {
+    throw std::runtime_error(std::string("dccl: the telemetry types (acomms/telemetry/messages.proto) do not load: ") +
+                             e.what());
+  }
   for (const std::string& file : config.proto_files()) {
     try {
       const std::map<std::string, std::string> refused_before = codec->refused_types();

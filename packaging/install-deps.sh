@@ -16,6 +16,8 @@ packages=(
   libstb-dev
   # header-only: Eigen, for the position-telemetry Kalman filter (daemon/telemetry)
   libeigen3-dev
+  # WGS84 lat/lon <-> local metres for the telemetry datum (static archive)
+  libgeographiclib-dev
 )
 if [[ "${1:-}" == "--test" ]]; then
   # clang and its runtime give libFuzzer with ASan/UBSan for the fuzz targets

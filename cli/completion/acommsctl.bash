@@ -20,7 +20,7 @@ _acommsctl() {
   for ((i = 1; i < COMP_CWORD; i++)); do
     word="${COMP_WORDS[i]}"
     case "${path:+$path }$word" in
-      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link raw"|"link ping"|"link lbl"|"link mini"|"link cycle"|"events"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"sim depth-adaptation"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"completion") path="${path:+$path }$word" ;;
+      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link raw"|"link cycle"|"events"|"nav"|"track"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"sim depth-adaptation"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"completion") path="${path:+$path }$word" ;;
     esac
   done
   case "$path" in
@@ -32,7 +32,7 @@ _acommsctl() {
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "status defs send sub queue link events dccl sim gram completion --help -h --socket -s --timeout --json --ca --cert --key --insecure --version" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "status defs send sub queue link events nav track dccl sim gram completion --help -h --socket -s --timeout --json --ca --cert --key --insecure --version" -- "$cur")) ;;
     "status")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -142,7 +142,7 @@ _acommsctl() {
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "status raw ping lbl mini cycle --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "status raw cycle --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "link status")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -161,33 +161,6 @@ _acommsctl() {
         -n|--lines|--file|--timeout) COMPREPLY=(); return ;;
       esac
       COMPREPLY=($(compgen -W "--help -h --lines -n --no-follow --file --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
-    "link ping")
-      case "$prev" in
-        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --wait|--timeout) COMPREPLY=(); return ;;
-      esac
-      COMPREPLY=($(compgen -W "--help -h --wait --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
-    "link lbl")
-      case "$prev" in
-        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --narrowband|--remus|--channel|--timeout-ms|--turnaround-ms|--ftx|--wait|--timeout) COMPREPLY=(); return ;;
-      esac
-      COMPREPLY=($(compgen -W "--help -h --narrowband --remus --channel --timeout-ms --turnaround-ms --ftx --wait --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
-    "link mini")
-      case "$prev" in
-        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --wait|--timeout) COMPREPLY=(); return ;;
-      esac
-      COMPREPLY=($(compgen -W "--help -h --wait --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "link cycle")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -208,6 +181,25 @@ _acommsctl() {
         --since|--until|--message|--limit|--timeout) COMPREPLY=(); return ;;
       esac
       COMPREPLY=($(compgen -W "--help -h --since --until --kind --type --message --limit --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "nav")
+      case "$prev" in
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "track")
+      case "$prev" in
+        --kml) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --since|--timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "--help -h --since --csv --kml --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "dccl")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;

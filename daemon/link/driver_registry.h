@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "acomms/v1/config.pb.h"
+#include "core/node_position.h"
 #include "core/scheduler.h"
 #include "link/driver.h"
 
@@ -32,6 +33,10 @@ struct DriverContext {
   // ("udp", "sim" over loopback). Null where there is none (tests on the
   // simulated scheduler); such drivers then refuse to be built.
   asio::io_context* io_context = nullptr;
+  // Where this node is now (the navigation input, SubmitNavigation), for
+  // drivers that model position: the simulator. Null: none (tests), or the
+  // driver's own config.
+  const core::NodePosition* node_position = nullptr;
 };
 
 using DriverFactory = std::function<std::unique_ptr<Driver>(const DriverContext&)>;

@@ -76,7 +76,9 @@ std::vector<std::string> QueueManager::add_types() {
     TypeState& state = by_id_.try_emplace(info->id).first->second;
     state.queue = std::make_unique<Queue>(info->name, info->id, policy, now);
     state.roles = std::move(roles);
-    if (duplicate_window_s_ > 0) {
+    // A type may keep out of the filter: it drops repeats itself.
+    const bool filtered = entry == nullptr || !entry->has_duplicate_filter() || entry->duplicate_filter();
+    if (duplicate_window_s_ > 0 && filtered) {
       // Never shorter than the ttl: the sender resends until then.
       state.window_s = std::max(duplicate_window_s_, policy.ttl_s);
       state.filter.emplace(state.window_s + (state.roles.has_timestamp() ? 2 * clock_skew_s_ : 0));

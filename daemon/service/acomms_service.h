@@ -4,7 +4,7 @@
 // the answer into a gRPC status a person can act on. The methods are
 // implemented by concern: message_rpcs.cpp (Submit, Encode, Decode),
 // definition_rpcs.cpp, queue_rpcs.cpp, link_rpcs.cpp, driver_specific_rpc.cpp,
-// event_rpcs.cpp, subscribe_rpc.cpp.
+// event_rpcs.cpp, subscribe_rpc.cpp, telemetry_rpcs.cpp.
 
 #include <chrono>
 #include <string>
@@ -21,6 +21,8 @@
 #include "service/definition_loader.h"
 #include "service/message_json.h"
 #include "service/subscriber_hub.h"
+#include "telemetry/telemetry_node.h"
+#include "telemetry/track_reader.h"
 
 namespace acomms::service {
 
@@ -57,6 +59,9 @@ struct Node {
   DefinitionLoader& definitions;
   queue::EventLogReader& events;
   SubscriberHub& subscribers;
+  // Position telemetry (core thread) and the received tracks (any thread).
+  telemetry::TelemetryNode& telemetry;
+  telemetry::TrackReader& track;
 };
 
 // Submit is a callback (reactor) method and the rest are synchronous: a
@@ -91,6 +96,10 @@ class AcommsService final : public v1::Acomms::WithCallbackMethod_Submit<v1::Aco
                               v1::DriverSpecificResponse*) override;
 
   grpc::Status Events(grpc::ServerContext*, const v1::EventsRequest*, v1::EventsResponse*) override;
+
+  grpc::Status SubmitNavigation(grpc::ServerContext*, grpc::ServerReader<v1::NavigationFix>*,
+                                v1::SubmitNavigationResponse*) override;
+  grpc::Status Track(grpc::ServerContext*, const v1::TrackRequest*, v1::TrackResponse*) override;
 
  private:
   // Parses a request's message (payload or JSON) into a new message of

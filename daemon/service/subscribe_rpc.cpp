@@ -15,12 +15,15 @@
 //     last seq written. Live messages with seq <= cursor were replayed
 //     already and are skipped; the rest are newer, in order.
 // INVARIANT: the seqs written to one stream strictly increase (leaving out
-// seq 0, driver-specific receptions that are never stored).
+// seq 0: driver-specific receptions and telemetry's Positions, which are
+// not in the event log).
 #include <spdlog/spdlog.h>
 
 #include <google/protobuf/descriptor.h>
 
 #include "service/acomms_service.h"
+#include "service/position_message.h"
+#include "telemetry/wire_message.h"
 #include "service/message_json.h"
 #include "service/rpc_status.h"
 
@@ -67,7 +70,9 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
   {
     auto stable = node_.submitter.types_stable();
     for (const std::string& type : request->types()) {
-      if (node_.codec.find_type(type) == nullptr && !is_driver_specific_type(type)) {
+      // Position is what telemetry publishes, not a DCCL type.
+      if (node_.codec.find_type(type) == nullptr && !is_driver_specific_type(type) &&
+          type != kPositionType) {
         return type_not_loaded(type);
       }
       filter.types.insert(type);
@@ -110,6 +115,12 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
         for (const queue::StoredReceived& stored : page) messages.push_back(from_store(stored, node_.codec));
       }
       for (const v1::ReceivedMessage& message : messages) {
+        // Telemetry's own messages are never published live (their content
+        // comes out as Position): not replayed either.
+        if (telemetry::is_telemetry_type(message.type())) {
+          cursor = message.seq();
+          continue;
+        }
         if (!writer->Write(message)) {
           gone = true;
           break;
@@ -121,8 +132,9 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
   }
   while (!gone && !context->IsCancelled()) {
     if (std::optional<v1::ReceivedMessage> message = subscription->next(kPollCancel)) {
-      // seq 0: a driver-specific reception, never stored nor replayed
-      // (link/driver_specific.h); it does not move the cursor.
+      // seq 0: not a message of the event log (a driver-specific reception,
+      // link/driver_specific.h, or a telemetry Position), never replayed,
+      // so never at the seam; it does not move the cursor.
       if (message->seq() != 0 && message->seq() <= cursor) continue;  // replayed already (seam step 3)
       if (!writer->Write(*message)) break;  // the client went away
       if (message->seq() != 0) cursor = message->seq();

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "link/rate_table.h"
+#include "sim/navigation_position.h"
 #include "sim_test_node.h"
 
 namespace acomms::drivers {
@@ -52,6 +53,27 @@ TEST_F(SimDriverTest, ArrivesAfterRangeOverSoundSpeedPlusAirTime) {
   EXPECT_EQ(rx.tx.frame(0), "hello");
   EXPECT_NE(rx.tx.link_quality().find("range_m=1500.0"), std::string::npos);
   EXPECT_EQ(b.driver->stats().received, 1u);
+}
+
+// A moving vehicle: the node's position comes from its navigation input
+// (core::NodePosition, fed by SubmitNavigation, as sim_plugin.cpp wires it),
+// so the range, and the
+// arrival time, follow the newest fix.
+TEST_F(SimDriverTest, PositionSourceMovesTheNodeForLaterTransmissions) {
+  TestNode a(scheduler_, channel_, 1, 0), b(scheduler_, channel_, 2, 1500);
+  core::NodePosition navigation;
+  a.driver->set_position_source(std::make_shared<NavigationPosition>(&navigation, a.driver->position()));
+  EXPECT_EQ(a.driver->position().x, 0);  // no fix yet: the config's position
+  navigation.set(core::NodeFix{1'700'000'000, 1500, 1500, -20});
+  EXPECT_EQ(a.driver->position().y, 1500);
+  EXPECT_EQ(a.driver->position().z, -20);
+  a.send(2, {"moved"}, 0, /*ack=*/false);
+  scheduler_.run_until(at(milliseconds(4499)));
+  EXPECT_TRUE(b.received.empty());  // 1500.1 m away now, not 0
+  scheduler_.run_until(at(milliseconds(4501)));
+  ASSERT_EQ(b.received.size(), 1u);
+  EXPECT_NE(b.received[0].tx.link_quality().find("range_m=1500.1"), std::string::npos)
+      << b.received[0].tx.link_quality();
 }
 
 TEST_F(SimDriverTest, SoundSpeedAndRateSetTheTimes) {

@@ -117,6 +117,23 @@ TEST_F(DeliveredOnceTest, UnstampedResendWithinTheTypesTtlIsADuplicateEvenPastTh
   EXPECT_EQ(manager_->stale_refused(), 0u);
 }
 
+// A type that drops repeats by a sequence number of its own (the telemetry
+// types: identical deltas are normal on a straight leg) is kept out of the
+// filter: every copy is passed on, and its ttl is not bounded by a window.
+TEST_F(DeliveredOnceTest, TypeWithTheDuplicateFilterOffPassesEveryCopyOn) {
+  make("duplicate_window_s: 300 type { type: \"qo.Note\" duplicate_filter: false policy { ttl_s: 900 } }");
+  std::string note = encode("qo.Note", "src: 4 dest: 1 value: 5");
+  EXPECT_EQ(manager_->receive(note, kPeer).size(), 1u);
+  at(10);
+  EXPECT_EQ(manager_->receive(note, kPeer).size(), 1u) << "an identical Note was taken as a resend";
+  EXPECT_EQ(manager_->duplicates(), 0u);
+  EXPECT_EQ(manager_->duplicate_window("qo.Note"), 0);
+  // Other types keep their filter.
+  std::string first = order(1, 10);
+  EXPECT_EQ(manager_->receive(first, kPeer).size(), 1u);
+  EXPECT_TRUE(manager_->receive(first, kPeer).empty());
+}
+
 TEST_F(DeliveredOnceTest, WindowOfATtlLongerTypeHoldsAcrossARestart) {
   const std::string text = "duplicate_window_s: 60 type { type: \"qo.Note\" policy { ttl_s: 600 } }";
   make(text);

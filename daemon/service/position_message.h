@@ -1,0 +1,24 @@
+#pragma once
+// A reconstructed telemetry position (telemetry/stream_receiver.h) as
+// clients see it: acomms.telemetry.Position, alone (Track) or wrapped as a
+// received message of that type (Subscribe).
+
+#include "acomms/telemetry/position.pb.h"
+#include "acomms/v1/acomms.pb.h"
+#include "telemetry/node_settings.h"
+#include "telemetry/stream_receiver.h"
+
+namespace acomms::service {
+
+inline constexpr const char* kPositionType = "acomms.telemetry.Position";
+
+// lat/lon through the settings' datum when there is one.
+telemetry::Position to_position(const telemetry::ReceivedPosition& position, const telemetry::NodeSettings& settings);
+
+// Type kPositionType, from position.src to `own_id`, received at `now`
+// (stored, that is; the sample's own time is in the payload); seq 0: not a
+// received message of the event log (Subscribe's `after` does not replay
+// positions; Track does).
+v1::ReceivedMessage to_received_message(const telemetry::Position& position, int32_t own_id, double now);
+
+}  // namespace acomms::service

@@ -1,0 +1,51 @@
+#pragma once
+// Little-endian fixed-width fields for the state a stream end keeps in the
+// store (stream_sender.h, stream_receiver.h): a reader that says "no"
+// instead of throwing, because stored bytes from another version are a
+// reason to start the stream over, not to stop the daemon.
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace acomms::telemetry {
+
+class StateWriter {
+ public:
+  void put(uint64_t value, int bytes) {
+    for (int i = 0; i < bytes; ++i) out_.push_back(static_cast<char>((value >> (8 * i)) & 0xff));
+  }
+  void put_bytes(std::string_view bytes) {
+    put(bytes.size(), 4);
+    out_.append(bytes);
+  }
+  std::string take() { return std::move(out_); }
+
+ private:
+  std::string out_;
+};
+
+class StateReader {
+ public:
+  explicit StateReader(std::string_view in) : in_(in) {}
+  bool get(int bytes, uint64_t* value) {
+    if (in_.size() < static_cast<size_t>(bytes)) return false;
+    *value = 0;
+    for (int i = 0; i < bytes; ++i) *value |= uint64_t{static_cast<uint8_t>(in_[i])} << (8 * i);
+    in_.remove_prefix(static_cast<size_t>(bytes));
+    return true;
+  }
+  bool get_bytes(std::string* out) {
+    uint64_t n = 0;
+    if (!get(4, &n) || n > in_.size()) return false;
+    out->assign(in_.substr(0, n));
+    in_.remove_prefix(n);
+    return true;
+  }
+  bool done() const { return in_.empty(); }
+
+ private:
+  std::string_view in_;
+};
+
+}  // namespace acomms::telemetry

@@ -1,0 +1,99 @@
+#pragma once
+// The receiving end of one telemetry stream on the link (from one sender):
+// puts wire messages back in order and feeds them, each exactly once, to
+// the library's decoder.
+//
+// The rules, by the signed distance d of a message's 12-bit sequence from
+// the last one consumed (wire_message.h, sequence_distance):
+//   d == 1   consumed now, then any held messages that follow on;
+//   d > 1    held until the gap before it fills (the sender resends
+//            what was lost, oldest first); a held full whose gap has been
+//            open longer than gap_timeout_s is consumed without it (the
+//            sender gave up on the missing message: its ttl passed);
+//   d <= 0   a resend of something consumed: dropped, except a full whose
+//            time is after the last position (a sender that lost its
+//            state starts its count again), which is consumed.
+// A delta is applied only when the decoder is in step (a full since the
+// start, and every message since consumed); otherwise it is dropped and
+// the stream waits for the next full: a position is never decoded against
+// the wrong state. Body bits that do not decode count as a lost delta.
+//
+// Not thread-safe: the core thread in acommsd.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "telemetry/telemetry_decoder.h"
+#include "telemetry/wire_message.h"
+
+namespace acomms::telemetry {
+
+// One reconstructed sample.
+struct ReceivedPosition {
+  int32_t src = 0;
+  int64_t time_s = 0;  // seconds since the Unix epoch
+  std::array<double, kAxes> position_m{};
+  bool full = false;
+};
+
+struct ReceiverCounters {
+  uint64_t positions = 0;
+  uint64_t duplicates = 0;    // resends of consumed messages
+  uint64_t out_of_step = 0;   // deltas dropped: no state to apply them to
+  uint64_t undecodable = 0;   // bodies that did not decode
+  uint64_t gaps_skipped = 0;  // fulls consumed past a gap that timed out
+};
+
+class StreamReceiver {
+ public:
+  static constexpr size_t kMaxHeld = 1024;
+
+  // Throws std::invalid_argument for an invalid config.
+  StreamReceiver(const TelemetryConfig& config, int32_t src, double gap_timeout_s);
+
+  // A message of this stream, received at `now` (seconds since the Unix
+  // epoch: places a full's time of day in a day). Returns the positions it
+  // (and held messages it released) reconstructed, in order.
+  std::vector<ReceivedPosition> receive(const WireMessage& message, double now);
+
+  std::string state() const;
+  // False for unusable bytes: the stream waits for the next full.
+  bool restore(std::string_view state);
+
+  const ReceiverCounters& counters() const { return counters_; }
+  size_t held() const { return held_.size(); }
+
+ private:
+  struct Held {
+    WireMessage message;
+    double arrived = 0;
+  };
+  void consume(const WireMessage& message, double now, std::vector<ReceivedPosition>* out);
+  void release(double now, std::vector<ReceivedPosition>* out);
+  // A body that did not decode: out of step until the next full.
+  void undecodable(const WireMessage& message, const char* why);
+  // A held full past a gap older than the timeout, if any.
+  std::optional<uint32_t> timed_out_full(double now) const;
+  // A full's time, placed in the day nearest `now`.
+  int64_t full_time(const WireMessage& message, double now) const;
+
+  TelemetryConfig config_;
+  int32_t src_;
+  double gap_timeout_s_;
+  TelemetryDecoder decoder_;
+  bool started_ = false;   // a message was consumed since the start
+  bool in_step_ = false;   // the decoder holds the sender's state
+  uint32_t last_ = 0;      // sequence of the last consumed message
+  int64_t day_offset_s_ = 0;  // absolute time - the decoder's time of day
+  int64_t last_time_s_ = 0;   // of the last position
+  // Messages after a gap, by sequence (at most kMaxHeld: past it the
+  // newest is refused, and the sender's resend brings it again).
+  std::map<uint32_t, Held> held_;
+  ReceiverCounters counters_;
+};
+
+}  // namespace acomms::telemetry

@@ -1,0 +1,275 @@
+// The telemetry stream as the link carries it (stream_sender.h,
+// stream_receiver.h, wire_message.h): in order or not, with resends, with
+// either end restarted from its stored state or without it, the receiver
+// reconstructs every sample exactly, once, in order, and never decodes a
+// delta against the wrong state.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "dccl/codec.h"
+#include "eval/track_generator.h"
+#include "telemetry/sampler.h"
+#include "telemetry/stream_receiver.h"
+#include "telemetry/stream_sender.h"
+
+namespace acomms::telemetry {
+namespace {
+
+constexpr double kEpoch = 1764000000;  // 2025-11-24 16:00 UTC: sample times are UTC
+
+std::vector<Sample> track_samples(eval::TrackKind kind, uint64_t seed, double duration_s, uint32_t tau_s) {
+  std::vector<Fix> fixes = eval::generate_track(kind, seed, duration_s);
+  for (Fix& fix : fixes) fix.time_s += kEpoch;
+  return sample_track(fixes, tau_s);
+}
+
+struct Sent {
+  WireMessage message;
+  Sample sample;
+};
+
+std::vector<Sent> send_all(StreamSender& sender, const std::vector<Sample>& samples) {
+  std::vector<Sent> out;
+  for (const Sample& s : samples) out.push_back({sender.send(s), s});
+  return out;
+}
+
+// What the receiver must end up with for `sent`: every sample, on the grid.
+void expect_positions(const std::vector<ReceivedPosition>& got, const std::vector<Sent>& sent,
+                      const TelemetryConfig& config) {
+  ASSERT_EQ(got.size(), sent.size());
+  for (size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i].time_s, sent[i].sample.time_s) << i;
+    EXPECT_EQ(got[i].full, sent[i].message.kind == MessageKind::kFull) << i;
+    for (int axis = 0; axis < kAxes; ++axis) {
+      EXPECT_EQ(got[i].position_m[axis], std::round(sent[i].sample.position_m[axis] / config.precision_m) *
+                                             config.precision_m)
+          << "sample " << i << " axis " << axis;
+    }
+    if (::testing::Test::HasFailure()) return;
+  }
+}
+
+void append(std::vector<ReceivedPosition>* all, std::vector<ReceivedPosition> more) {
+  all->insert(all->end(), more.begin(), more.end());
+}
+
+TEST(StreamLinkTest, InOrderDeliveryReconstructsEverySampleExactly) {
+  TelemetryConfig config;
+  StreamSender sender(config, 2, 1);
+  StreamReceiver receiver(config, 2, 1800);
+  const std::vector<Sent> sent = send_all(sender, track_samples(eval::TrackKind::kAuv, 7, 4 * 3600, config.tau_s));
+  std::vector<ReceivedPosition> got;
+  for (const Sent& s : sent) append(&got, receiver.receive(s.message, static_cast<double>(s.sample.time_s) + 30));
+  expect_positions(got, sent, config);
+  EXPECT_EQ(receiver.counters().duplicates, 0u);
+  EXPECT_EQ(receiver.held(), 0u);
+}
+
+// Resends (an ACK lost) and reordering (a lost frame resent after later
+// ones), as a lossy link with acks delivers them.
+TEST(StreamLinkTest, ReorderedAndRepeatedMessagesAreAppliedOnceInOrder) {
+  for (ObserverKind observer : {ObserverKind::kFixedSpeed, ObserverKind::kKalman}) {
+    TelemetryConfig config;
+    config.observer = observer;
+    StreamSender sender(config, 2, 1);
+    StreamReceiver receiver(config, 2, 1800);
+    const std::vector<Sent> sent = send_all(sender, track_samples(eval::TrackKind::kAuv, 3, 3 * 3600, config.tau_s));
+    std::mt19937_64 rng(11);
+    std::vector<size_t> order;
+    for (size_t i = 0; i < sent.size(); ++i) {
+      order.push_back(i);
+      if (rng() % 4 == 0) order.push_back(i);  // a resend
+    }
+    // Each message may arrive up to 8 places late.
+    for (size_t i = 0; i + 1 < order.size(); ++i) {
+      size_t j = std::min(order.size() - 1, i + rng() % 8);
+      std::swap(order[i], order[j]);
+    }
+    std::vector<ReceivedPosition> got;
+    for (size_t i : order) append(&got, receiver.receive(sent[i].message, static_cast<double>(sent[i].sample.time_s)));
+    expect_positions(got, sent, config);
+    EXPECT_GT(receiver.counters().duplicates, 0u);
+    EXPECT_EQ(receiver.counters().out_of_step, 0u);
+  }
+}
+
+TEST(StreamLinkTest, SequenceNumbersWrapWithoutLoss) {
+  TelemetryConfig config;
+  StreamSender sender(config, 2, 1);
+  StreamReceiver receiver(config, 2, 1800);
+  // More than 4096 messages: the 12-bit sequence wraps.
+  const std::vector<Sent> sent = send_all(sender, track_samples(eval::TrackKind::kAuv, 5, 50000, config.tau_s));
+  ASSERT_GT(sent.size(), kWireSequenceModulus);
+  std::vector<ReceivedPosition> got;
+  for (const Sent& s : sent) append(&got, receiver.receive(s.message, static_cast<double>(s.sample.time_s)));
+  expect_positions(got, sent, config);
+}
+
+TEST(StreamLinkTest, SenderRestartedFromItsStateCostsOneFull) {
+  TelemetryConfig config;
+  const std::vector<Sample> samples = track_samples(eval::TrackKind::kAuv, 9, 2 * 3600, config.tau_s);
+  const size_t half = 300;
+  StreamSender before(config, 2, 1);
+  StreamReceiver receiver(config, 2, 1800);
+  std::vector<Sent> sent = send_all(before, {samples.begin(), samples.begin() + half});
+  StreamSender after(config, 2, 1);
+  ASSERT_TRUE(after.restore(before.state()));
+  // The restarted daemon's sampler starts a new segment.
+  std::vector<Sample> rest(samples.begin() + half, samples.end());
+  rest.front().new_segment = true;
+  std::vector<Sent> more = send_all(after, rest);
+  EXPECT_EQ(more.front().message.kind, MessageKind::kFull);
+  EXPECT_EQ(more.front().message.sequence, (before.last_sequence() + 1) % kWireSequenceModulus);
+  sent.insert(sent.end(), more.begin(), more.end());
+  std::vector<ReceivedPosition> got;
+  for (const Sent& s : sent) append(&got, receiver.receive(s.message, static_cast<double>(s.sample.time_s)));
+  expect_positions(got, sent, config);
+}
+
+// Killed after a message was stored but before its stream state was: the
+// restarted sender continues after the newest queued sequence, so the
+// receiver gets no number twice and waits for none that does not exist.
+TEST(StreamLinkTest, SenderStateBehindTheQueueContinuesAfterTheNewestQueued) {
+  TelemetryConfig config;
+  const std::vector<Sample> samples = track_samples(eval::TrackKind::kAuv, 12, 3600, config.tau_s);
+  StreamSender before(config, 2, 1);
+  StreamReceiver receiver(config, 2, 1800);
+  std::vector<Sent> sent = send_all(before, {samples.begin(), samples.begin() + 100});
+  const std::string stored = before.state();  // then one more message was queued, its state lost
+  sent.push_back({before.send(samples[100]), samples[100]});
+  StreamSender after(config, 2, 1);
+  ASSERT_TRUE(after.restore(stored));
+  after.continue_after(sent.back().message.sequence);
+  after.continue_after(sent[50].message.sequence);  // older queued ones change nothing
+  std::vector<Sample> rest(samples.begin() + 101, samples.end());
+  rest.front().new_segment = true;
+  std::vector<Sent> more = send_all(after, rest);
+  EXPECT_EQ(more.front().message.sequence, (sent.back().message.sequence + 1) % kWireSequenceModulus);
+  EXPECT_EQ(more.front().message.kind, MessageKind::kFull);
+  sent.insert(sent.end(), more.begin(), more.end());
+  std::vector<ReceivedPosition> got;
+  for (const Sent& s : sent) append(&got, receiver.receive(s.message, static_cast<double>(s.sample.time_s)));
+  expect_positions(got, sent, config);
+  EXPECT_EQ(receiver.held(), 0u);
+}
+
+TEST(StreamLinkTest, SenderThatLostItsStateIsFollowedFromItsNextFull) {
+  TelemetryConfig config;
+  const std::vector<Sample> samples = track_samples(eval::TrackKind::kGlider, 2, 8 * 3600, config.tau_s);
+  StreamSender before(config, 2, 1);
+  StreamReceiver receiver(config, 2, 1800);
+  std::vector<Sent> sent = send_all(before, {samples.begin(), samples.begin() + 1000});
+  StreamSender wiped(config, 2, 1);  // store wiped: counts from 0 again
+  EXPECT_FALSE(wiped.restore(""));
+  std::vector<Sent> more = send_all(wiped, {samples.begin() + 1000, samples.end()});
+  EXPECT_EQ(more.front().message.sequence, 0u);
+  sent.insert(sent.end(), more.begin(), more.end());
+  std::vector<ReceivedPosition> got;
+  for (const Sent& s : sent) append(&got, receiver.receive(s.message, static_cast<double>(s.sample.time_s)));
+  expect_positions(got, sent, config);
+}
+
+TEST(StreamLinkTest, ReceiverRestoredMidStreamWithHeldMessagesContinues) {
+  TelemetryConfig config;
+  StreamSender sender(config, 2, 1);
+  const std::vector<Sent> sent = send_all(sender, track_samples(eval::TrackKind::kAuv, 4, 2 * 3600, config.tau_s));
+  StreamReceiver receiver(config, 2, 1800);
+  std::vector<ReceivedPosition> got;
+  for (size_t i = 0; i < 200; ++i) append(&got, receiver.receive(sent[i].message, 0 + kEpoch));
+  // 200 lost for now; 201..210 arrive and are held.
+  for (size_t i = 201; i <= 210; ++i) append(&got, receiver.receive(sent[i].message, kEpoch));
+  EXPECT_EQ(receiver.held(), 10u);
+  StreamReceiver restarted(config, 2, 1800);
+  ASSERT_TRUE(restarted.restore(receiver.state()));
+  EXPECT_EQ(restarted.held(), 10u);
+  for (size_t i = 200; i < sent.size(); ++i) append(&got, restarted.receive(sent[i].message, kEpoch));
+  expect_positions(got, sent, config);
+}
+
+TEST(StreamLinkTest, GapThatNeverFillsIsSkippedAtTheNextFullAfterTheTimeout) {
+  TelemetryConfig config;
+  config.full_every = 20;
+  StreamSender sender(config, 2, 1);
+  const std::vector<Sent> sent = send_all(sender, track_samples(eval::TrackKind::kAuv, 6, 3600, config.tau_s));
+  StreamReceiver receiver(config, 2, /*gap_timeout_s=*/100);
+  std::vector<ReceivedPosition> got;
+  const size_t lost = 5;  // a delta the sender gave up on
+  ASSERT_EQ(sent[lost].message.kind, MessageKind::kDelta);
+  size_t next_full = lost + 1;
+  while (sent[next_full].message.kind != MessageKind::kFull) ++next_full;
+  double now = kEpoch;
+  for (size_t i = 0; i < sent.size(); ++i) {
+    if (i == lost) continue;
+    now += 10;
+    append(&got, receiver.receive(sent[i].message, now));
+  }
+  EXPECT_EQ(receiver.counters().gaps_skipped, 1u);
+  // Everything but the lost one and the deltas that depended on it, each
+  // exactly as sent.
+  std::vector<Sent> expected(sent.begin(), sent.begin() + lost);
+  expected.insert(expected.end(), sent.begin() + static_cast<long>(next_full), sent.end());
+  expect_positions(got, expected, config);
+}
+
+TEST(StreamLinkTest, DeltaOfAnotherConfigIsNotDecodedAsAPosition) {
+  TelemetryConfig config;
+  TelemetryConfig other = config;
+  other.model = ModelKind::kUniform;
+  StreamSender sender(other, 2, 1);
+  StreamReceiver receiver(config, 2, 1800);
+  const std::vector<Sent> sent = send_all(sender, track_samples(eval::TrackKind::kAuv, 8, 600, config.tau_s));
+  std::vector<ReceivedPosition> got;
+  for (const Sent& s : sent) append(&got, receiver.receive(s.message, kEpoch));
+  // The full decodes (it does not depend on the model); the deltas are read
+  // with tables they were not coded with: whatever comes out is never
+  // reported past a body that does not end where it should.
+  ASSERT_FALSE(got.empty());
+  EXPECT_TRUE(got.front().full);
+}
+
+TEST(StreamLinkTest, WireMessagesRoundTripThroughTheShippedDcclTypes) {
+  dccl::Codec codec;
+  codec.load("acomms/telemetry/messages.proto");
+  TelemetryConfig config;
+  StreamSender sender(config, 2, 1);
+  StreamReceiver receiver(config, 2, 1800);
+  const std::vector<Sent> sent = send_all(sender, track_samples(eval::TrackKind::kAuv, 1, 3600, config.tau_s));
+  std::vector<ReceivedPosition> got;
+  size_t delta_bytes = 0, deltas = 0;
+  for (const Sent& s : sent) {
+    const std::string bytes = codec.encode(*to_dccl(codec, s.message));
+    EXPECT_EQ(codec.id_of(bytes), s.message.kind == MessageKind::kFull ? kFullId : kDeltaId);
+    if (s.message.kind == MessageKind::kDelta) {
+      delta_bytes += bytes.size();
+      ++deltas;
+    }
+    WireMessage back = from_dccl(*codec.decode(bytes).at(0));
+    EXPECT_EQ(back.body, s.message.body);
+    EXPECT_EQ(back.sequence, s.message.sequence);
+    EXPECT_EQ(back.dest, 1);
+    append(&got, receiver.receive(back, static_cast<double>(s.sample.time_s)));
+  }
+  expect_positions(got, sent, config);
+  // id 8 bits + src, dest 7 + sequence 12 + count 7 + codeword, the body
+  // padded to a byte: about 7 bytes on an AUV's track (against 12 for
+  // three raw 32-bit floats).
+  ASSERT_GT(deltas, 0u);
+  EXPECT_LE(static_cast<double>(delta_bytes) / static_cast<double>(deltas), 7.25);
+}
+
+TEST(StreamLinkTest, SequenceDistanceIsSignedModulo4096) {
+  EXPECT_EQ(sequence_distance(1, 0), 1);
+  EXPECT_EQ(sequence_distance(0, 4095), 1);
+  EXPECT_EQ(sequence_distance(4095, 0), -1);
+  EXPECT_EQ(sequence_distance(5, 5), 0);
+  EXPECT_EQ(sequence_distance(2048, 0), -2048);
+  EXPECT_EQ(sequence_distance(2047, 0), 2047);
+}
+
+}  // namespace
+}  // namespace acomms::telemetry
