@@ -40,6 +40,7 @@ void Daemon::start() {
   store_ = std::make_unique<store::Store>(config_.data_dir());
   std::vector<service::RecordedDefinition> api_definitions =
       service::DefinitionLoader::read_recorded(store_->db());
+  gram_ = make_gram(config_.gram(), config_.data_dir(), store_->db());
   // From here on only the writer's thread touches the store's connection.
   writer_ = std::make_unique<store::GroupCommitWriter>(store_->db());
   journal_ = std::make_unique<queue::SqliteJournal>(*writer_);
@@ -85,9 +86,12 @@ void Daemon::start() {
       std::move(identity), service::Node{*codec_, *queues_, *submitter_, *core_, {*mac_, *driver_, *link_},
                                          *definitions_, *events_, subscribers_});
 
+  gram_api_ = std::make_unique<service::GramService>(*gram_.pool, *gram_.environment,
+                                                     save_environment_to(*writer_));
+
   server_ = std::make_unique<service::GrpcServer>(
       service::endpoints_of(config_.grpc()),
-      std::vector<grpc::Service*>{api_.get()});
+      std::vector<grpc::Service*>{api_.get(), gram_api_.get()});
   server_->set_serving(true);
   core::systemd_notify("READY=1\nSTATUS=serving");
   spdlog::info("acommsd {} serving (data dir {})", ACOMMS_VERSION, config_.data_dir());
@@ -176,7 +180,7 @@ void Daemon::schedule_expiry() {
 }
 
 void Daemon::stop() {
-  if (!server_ && !core_ && !store_) return;
+  if (!server_ && !core_ && !store_ && !gram_.pool) return;
   core::systemd_notify("STOPPING=1");
   // The link stops first: the server's shutdown may take its whole grace
   // period (an idle client connection holds it), and nothing should go on
@@ -188,6 +192,10 @@ void Daemon::stop() {
   subscribers_.close();
   if (server_) server_->shutdown(std::chrono::seconds(2));
   server_.reset();
+  gram_api_.reset();
+  // Waiting model requests are answered, running ones cancelled, workers joined.
+  gram_.pool.reset();
+  gram_.environment.reset();
   if (core_) core_->stop();
   link_.reset();
   mac_.reset();

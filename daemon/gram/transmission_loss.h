@@ -13,11 +13,14 @@
 #include <vector>
 
 #include "acomms/gram/environment.pb.h"
+#include "gram/cancel_token.h"
 
 namespace acomms::gram {
 
 struct RunOptions {
   unsigned threads = 0;  // 0: the hardware's concurrency
+  // Polled once per beam; when cancelled the run throws ModelCancelled.
+  const CancelToken* cancel = nullptr;
 };
 
 struct TransmissionLoss {
@@ -30,7 +33,8 @@ struct TransmissionLoss {
   std::uint32_t beam_count = 0;  // the count used (automatic if the input gave 0)
 };
 
-// Throws std::invalid_argument with validate_environment's message.
+// Throws std::invalid_argument with validate_environment's message, or
+// ModelCancelled when options.cancel was cancelled during the run.
 TransmissionLoss compute_transmission_loss(const Environment& env, const RunOptions& options = {});
 
 }  // namespace acomms::gram
