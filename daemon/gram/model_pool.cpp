@@ -25,7 +25,7 @@ struct ModelTicket::Job {
   // worker's answer.
   void answer(ModelOutcome outcome) {
     if (answered.exchange(true)) return;
-    Done d = std::move(done);
+    ModelPool::Done d = std::move(done);
     d(std::move(outcome));
   }
   ModelStatus stop_status() const {

@@ -195,7 +195,9 @@ TEST(GramModelPool, AnIdenticalRequestIsAnsweredFromTheCache) {
 }
 
 TEST(GramModelPool, TheCacheStaysWithinItsBudget) {
-  ModelPool pool({1, 16, 3000}, std::make_unique<GatedEngine>());
+  auto engine = std::make_unique<GatedEngine>();
+  engine->open();
+  ModelPool pool({1, 16, 3000}, std::move(engine));
   // Each answer is a few hundred bytes plus its key (the environment).
   for (int i = 0; i < 20; ++i) {
     Answer a;
