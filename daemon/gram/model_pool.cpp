@@ -245,8 +245,29 @@ ModelResult ModelPool::compute(const Job& job) {
       break;
     }
     case ModelKind::kDepthObjective:
-      for (const Environment& env : request.environments)
-        result.tl.push_back(engine_->transmission_loss(env, job.token));
+      // Each instance's TL is cached as a TransmissionLoss answer of its own:
+      // the vehicle's next query (new range, speed or heading, same
+      // environment) then costs no model run.
+      for (const Environment& env : request.environments) {
+        ModelRequest tl_request;
+        tl_request.environments = {env};
+        const std::string key = cache_key(tl_request, engine_name_);
+        std::shared_ptr<const ModelResult> cached;
+        {
+          std::lock_guard lock(mutex_);
+          cached = cache_.find(key);
+        }
+        if (cached) {
+          result.tl.push_back(cached->tl.at(0));
+          continue;
+        }
+        auto single = std::make_shared<ModelResult>();
+        single->engine = engine_name_;
+        single->tl.push_back(engine_->transmission_loss(env, job.token));
+        result.tl.push_back(single->tl[0]);
+        std::lock_guard lock(mutex_);
+        cache_.insert(key, single, result_bytes(*single));
+      }
       result.objective = compute_depth_objective(result.tl, request.environments[0], job.objective);
       break;
   }

@@ -13,7 +13,9 @@
 //   consumer's request still WAITING; a running one is left to finish.
 // - More than queue_limit waiting requests: the new one gets kQueueFull.
 // - Identical requests (same kind, environments, options, engine) are
-//   answered from a cache bounded by cache_bytes, without a queue slot.
+//   answered from a cache bounded by cache_bytes, without a queue slot. A
+//   depth objective also caches each instance's TL as a TL answer, so a
+//   new query on the same environment runs no model.
 // - A ticket's cancel(), or the request's deadline, stops a running model
 //   between two beams (a fraction of a second) and frees the worker.
 // - Idle workers wait on a condition variable: no CPU.

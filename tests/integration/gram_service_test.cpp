@@ -49,8 +49,8 @@ std::vector<std::map<std::string, std::string>> read_csv(const std::string& name
     if (line.empty()) continue;
     std::stringstream ls(line);
     std::map<std::string, std::string> row;
-    for (std::size_t i = 0; std::getline(ls, row[header.at(i)], ','); ++i) {
-    }
+    std::size_t i = 0;
+    for (std::string cell; i < header.size() && std::getline(ls, cell, ','); ++i) row[header[i]] = cell;
     rows.push_back(row);
   }
   return rows;
@@ -332,7 +332,10 @@ TEST_F(GramServiceTest, DepthObjectiveAveragesTheInstancesAsTheConformanceFilesS
     EXPECT_EQ(response.instances(), 2u);
     const double delta_r = std::stod(row.at("delta_r_m"));
     if (!r.window_widened()) EXPECT_NEAR(r.window_end_m() - r.window_begin_m(), std::abs(delta_r), 1e-6) << "row " << w;
-    gram::RangeWindow window{r.window_begin_m(), r.window_end_m(), r.window_widened()};
+    gram::RangeWindow window;
+    window.begin_m = r.window_begin_m();
+    window.end_m = r.window_end_m();
+    window.widened = r.window_widened();
     std::vector<gram::RangeAveragedTl> per_instance;
     for (const auto& tl : fields) per_instance.push_back(gram::range_averaged_tl(tl, window));
     std::vector<double> depths, objective;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <future>
 #include <mutex>
@@ -192,6 +193,35 @@ TEST(GramModelPool, AnIdenticalRequestIsAnsweredFromTheCache) {
   pool.submit(tl_request(21), "", different.done());
   EXPECT_FALSE(different.get().from_cache);
   EXPECT_EQ(pool.stats().cache_hits, 1u);
+}
+
+TEST(GramModelPool, ADepthObjectiveReusesEachInstancesCachedTl) {
+  auto engine = std::make_unique<GatedEngine>();
+  GatedEngine* gate = engine.get();
+  gate->open();
+  ModelPool pool({1, 16, 1 << 20}, std::move(engine));
+  ModelRequest request;
+  request.kind = ModelKind::kDepthObjective;
+  request.environments = {small_env(10), small_env(12)};
+  auto& q = request.objective;
+  q.set_range_m(1000);
+  q.set_speed_mps(1.5);
+  q.set_horizon_s(120);
+  q.set_h_max_db(108);
+  q.mutable_limits()->set_max_depth_m(90);
+  Answer first, second;
+  pool.submit(request, "", first.done());
+  ModelOutcome a = first.get();
+  ASSERT_EQ(a.status, ModelStatus::kOk) << a.message;
+  EXPECT_EQ(gate->runs(), 2);
+  q.set_speed_mps(2.5);  // another query, the same environments
+  pool.submit(request, "", second.done());
+  ModelOutcome b = second.get();
+  ASSERT_EQ(b.status, ModelStatus::kOk) << b.message;
+  EXPECT_FALSE(b.from_cache);
+  EXPECT_EQ(gate->runs(), 2);  // no model run
+  // TL 10 and 12 dB everywhere: eq. 4.4 of the two.
+  EXPECT_NEAR(b.result->objective->h_bar_db[0], -10 * std::log10((std::pow(10, -1.0) + std::pow(10, -1.2)) / 2), 1e-9);
 }
 
 TEST(GramModelPool, TheCacheStaysWithinItsBudget) {
