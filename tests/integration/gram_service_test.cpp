@@ -409,6 +409,43 @@ TEST_F(GramServiceTest, DepthObjectiveAveragesTheInstancesAsTheConformanceFilesS
   EXPECT_NE(bad.error_message().find("horizon_s"), std::string::npos) << bad.error_message();
 }
 
+// acommsctl's daemon commands: env update/show and depth (with --png).
+TEST_F(GramServiceTest, AcommsctlFeedsTheEnvironmentAndPrintsTheBestDepth) {
+  start();
+  const std::string ctl = ACOMMSCTL_BINARY;
+  const std::string cast = (dir_ / "cast.csv").string();
+  std::ofstream(cast) << cast_csv(19);
+  auto r = run(ctl, {"--socket", socket_, "gram", "env", "update", "--ctd", cast, "--time", "1700000000"},
+               (dir_ / "ctl1").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("1 profile instance(s) held"), std::string::npos) << r.out;
+  r = run(ctl, {"--socket", socket_, "gram", "env", "show"}, (dir_ / "ctl2").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("time_s: 1700000000"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("samples: 51"), std::string::npos) << r.out;
+
+  const std::string png = (dir_ / "depth.png").string();
+  r = run(ctl, {"--socket", socket_, "gram", "depth", "--range", "3000", "--speed", "1.5", "--max-depth", "90",
+                "--min-altitude", "5", "--lowpass", "0.02", "--png", png},
+          (dir_ / "ctl3").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("depth_m,h_bar_db,objective,objective_filtered\n", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("# best depth "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1 profile instance(s)"), std::string::npos) << r.out;
+  std::ifstream in(png, std::ios::binary);
+  char magic[8] = {};
+  in.read(magic, 8);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+
+  // Refused by the daemon: exit 1 and the status name.
+  r = run(ctl, {"--socket", socket_, "gram", "depth", "--range", "3000", "--speed", "1.5", "--max-depth", "90",
+                "--horizon", "0"},
+          (dir_ / "ctl4").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("INVALID_ARGUMENT"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("horizon_s"), std::string::npos) << r.err;
+}
+
 // The external engine through a stand-in: the run's title picks what the
 // stand-in does (write the known field, hang, fail).
 TEST_F(GramServiceTest, TheExternalEngineAnswersFailsVerbatimAndIsKilledWhenItHangs) {
