@@ -3,12 +3,14 @@
 // pause() holds every worker, so "waiting" and "running" are states the
 // test makes, not moments it hopes to catch.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <future>
 #include <mutex>
+#include <thread>
 
 #include "gram/bellhop_import.h"
 #include "gram/model_pool.h"
@@ -246,6 +248,21 @@ TEST(GramModelPool, ABadEnvironmentIsRefusedNamingTheField) {
   ModelOutcome o = answer.get();
   EXPECT_EQ(o.status, ModelStatus::kInvalid);
   EXPECT_NE(o.message.find("sound_speed[1].depth_m"), std::string::npos) << o.message;
+}
+
+// Idle workers wait on a condition variable: over a quiet interval the
+// process (whose only other threads are gtest's) uses next to no CPU.
+TEST(GramModelPool, IdleWorkersUseNoCpu) {
+  ModelPool pool({4, 16, 1 << 20}, make_builtin_engine());
+  auto cpu_s = [] {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec + 1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+  };
+  const double before = cpu_s();
+  std::this_thread::sleep_for(300ms);  // the interval measured, not a wait for another thread
+  EXPECT_LT(cpu_s() - before, 0.02);
+  EXPECT_EQ(pool.stats().workers, 4u);
 }
 
 TEST(GramModelPool, DestroyingThePoolAnswersWaitingRequests) {
