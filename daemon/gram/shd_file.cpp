@@ -113,6 +113,12 @@ ShdField read_shd(std::string_view bytes, const std::string& file_name) {
   f.freq = in.read<double>(3, 0, f.n_freq, "freqVec");
   f.source_depth_m = in.read<float>(7, 0, nsz, "Sz");
   f.receiver_depth_m = in.read<float>(8, 0, nrz, "Rz");
+  // Every pressure record must be in the file before any is read (nothing
+  // is allocated for a header that claims more than the file holds).
+  if (2 * nrr > in.words()) in.fail(2, "NRr = " + std::to_string(nrr) + " complex values do not fit in a record");
+  if ((10 + records) * 4 * in.words() > bytes.size() + 4 * in.words())
+    in.fail(10 + records - 1, "the file ends (at " + std::to_string(bytes.size()) + " bytes) before the last of " +
+                                  std::to_string(records) + " pressure records");
   f.pressure.reserve(records * nrr);
   for (std::size_t k = 0; k < records; ++k) {
     const auto values = in.read<float>(10 + k, 0, 2 * nrr, "pressure");
