@@ -12,6 +12,7 @@
 #include "eval/discovery_simulation.h"
 #include "eval/market_simulation.h"
 #include "mac/blank_slot.h"
+#include "sim_depth_adaptation_command.h"
 #include "sim_telemetry_command.h"
 
 namespace acomms::cli {
@@ -244,6 +245,7 @@ CLI::App* add_sim_command(CLI::App& app, const GlobalOptions& options) {
   add_queue_market_command(sim);
   add_mac_discovery_command(sim);
   add_sim_telemetry_command(sim, options);
+  add_sim_depth_adaptation_command(sim, options);
   return sim;
 }
 

@@ -20,7 +20,7 @@ _acommsctl() {
   for ((i = 1; i < COMP_CWORD; i++)); do
     word="${COMP_WORDS[i]}"
     case "${path:+$path }$word" in
-      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link raw"|"link cycle"|"events"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"gram depth"|"gram env"|"gram env show"|"gram env update"|"completion") path="${path:+$path }$word" ;;
+      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link raw"|"link cycle"|"events"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"sim depth-adaptation"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"completion") path="${path:+$path }$word" ;;
     esac
   done
   case "$path" in
@@ -231,7 +231,7 @@ _acommsctl() {
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "queue-market mac-discovery telemetry --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "queue-market mac-discovery telemetry depth-adaptation --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "sim queue-market")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -259,6 +259,16 @@ _acommsctl() {
         --track|--generate|--duration|--observer|--model|--tau|--precision|--speed|--sigma-j2|--r|--bounds|--full-every|--loss|--packet-bits|--seed|--timeout) COMPREPLY=(); return ;;
       esac
       COMPREPLY=($(compgen -W "--help -h --track --generate --duration --observer --model --tau --precision --speed --sigma-j2 --r --bounds --full-every --loss --packet-bits --seed --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "sim depth-adaptation")
+      case "$prev" in
+        --png) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --env|--model-env|--buoy-depth|--start-range|--max-range|--speed|--interval|--rate|--depths|--start-depth|--vertical-speed|--tau-a|--h-max|--min-depth|--max-depth|--min-altitude|--bin|--range-step|--depth-step|--laps|--seed|--threads|--source-level|--noise-level|--sea-state|--band|--shipping|--snr50|--slope|--timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "--help -h --env --model-env --png --buoy-depth --start-range --max-range --speed --interval --rate --depths --start-depth --vertical-speed --tau-a --h-max --min-depth --max-depth --min-altitude --bin --range-step --depth-step --laps --seed --threads --source-level --noise-level --sea-state --band --shipping --snr50 --slope --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "gram")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -267,7 +277,7 @@ _acommsctl() {
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "ssp tl arrivals depth env --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "ssp tl arrivals --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "gram ssp")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -296,43 +306,6 @@ _acommsctl() {
         --env|--at|--timeout) COMPREPLY=(); return ;;
       esac
       COMPREPLY=($(compgen -W "--help -h --env --at --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
-    "gram depth")
-      case "$prev" in
-        --png) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --range|--speed|--heading|--horizon|--h-max|--min-depth|--max-depth|--min-altitude|--lowpass|--source-level|--noise-level|--array-gain|--threshold|--source-depth|--consumer|--deadline|--timeout) COMPREPLY=(); return ;;
-      esac
-      COMPREPLY=($(compgen -W "--help -h --range --speed --heading --horizon --h-max --h-max-window --min-depth --max-depth --min-altitude --lowpass --zero-phase --source-level --noise-level --array-gain --threshold --source-depth --consumer --deadline --png --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
-    "gram env")
-      case "$prev" in
-        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --timeout) COMPREPLY=(); return ;;
-      esac
-      COMPREPLY=($(compgen -W "show update --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
-    "gram env show")
-      case "$prev" in
-        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --timeout) COMPREPLY=(); return ;;
-      esac
-      COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
-    "gram env update")
-      case "$prev" in
-        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --ctd|--time|--timeout) COMPREPLY=(); return ;;
-      esac
-      COMPREPLY=($(compgen -W "--help -h --ctd --time --clear --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "completion")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;

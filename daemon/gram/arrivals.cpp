@@ -133,11 +133,8 @@ std::vector<ReceiverArrivals> compute_arrivals(const Environment& env, const Arr
     throw_if_cancelled(options.cancel);
     const double angle = a1 + m * spacing;
     RayTracer ray(medium, angle);
-    RayPoint previous = ray.point();
-    while (ray.next()) {
-      collect(medium, receivers, m, angle, spacing, c_source, previous, ray.point(), candidates);
-      previous = ray.point();
-    }
+    while (ray.next())
+      collect(medium, receivers, m, angle, spacing, c_source, ray.previous(), ray.point(), candidates);
   }
   std::vector<ReceiverArrivals> result(receivers.size());
   for (const auto& column : receivers.columns())

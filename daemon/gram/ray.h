@@ -36,20 +36,29 @@ class RayTracer {
  public:
   RayTracer(const Medium& medium, double launch_angle_rad);
 
-  const RayPoint& point() const { return point_; }
+  const RayPoint& point() const { return points_[current_]; }
+  // The point before point(): after next() returned true, the start of the
+  // segment it just traced (kept so callers need not copy every point).
+  const RayPoint& previous() const { return points_[current_ ^ 1]; }
   // Advances one step; false when the ray has ended (box, turned back,
   // amplitude below the floor, step limit). point() is then unchanged.
   bool next();
 
  private:
-  RayPoint integrate(const RayPoint& from, const SoundSpeedProfile::Value& at_from, double h) const;
+  // Writes r, z, ξ, ζ, τ, q, p, s of the step of length h from `from` into
+  // `out` (not `from`); the other fields of `out` are left to the caller.
+  void integrate(const RayPoint& from, const SoundSpeedProfile::Value& at_from, double h,
+                 RayPoint& out) const;
   void land_on_node(std::size_t node);
   void reflect(bool top);
   double bottom_offset(const RayPoint& at) const;  // z − bottom depth (< 0 in water)
   void update_fade();  // recomputes faded_at_s_ after the reflection product changed
 
   const Medium& medium_;
-  RayPoint point_;
+  // Two slots, alternating: next() writes the new point over the one before
+  // the current, so a step copies nothing.
+  RayPoint points_[2];
+  unsigned current_ = 0;
   std::size_t layer_ = 0;
   SoundSpeedProfile::Value here_{};  // c, c_z, c_zz at point_ in layer_
   std::size_t segment_ = 0;

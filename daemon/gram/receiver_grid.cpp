@@ -7,6 +7,23 @@
 #include <numeric>
 
 namespace acomms::gram {
+namespace {
+
+// The step of `x` if its values are evenly spaced (within rounding), else 0.
+double even_step(const std::vector<double>& x) {
+  if (x.size() < 3) return 0;
+  const double step = (x.back() - x.front()) / static_cast<double>(x.size() - 1);
+  if (!(step > 0)) return 0;
+  for (std::size_t i = 1; i < x.size(); ++i)
+    if (std::abs(x[i] - x[i - 1] - step) > 1e-9 * step) return 0;
+  return step;
+}
+
+}  // namespace
+
+std::size_t ReceiverColumn::binary_search(const std::vector<double>& sorted, double x) {
+  return static_cast<std::size_t>(std::lower_bound(sorted.begin(), sorted.end(), x) - sorted.begin());
+}
 
 ReceiverGrid::ReceiverGrid(const Environment& env) {
   std::map<double, std::vector<std::pair<double, std::size_t>>> by_range;
@@ -29,22 +46,20 @@ ReceiverGrid::ReceiverGrid(const Environment& env) {
       column.depth_m.push_back(z);
       column.index.push_back(index);
     }
-    const auto& z = column.depth_m;
-    if (z.size() >= 3) {
-      const double step = (z.back() - z.front()) / static_cast<double>(z.size() - 1);
-      bool even = step > 0;
-      for (std::size_t i = 1; even && i < z.size(); ++i)
-        even = std::abs(z[i] - z[i - 1] - step) <= 1e-9 * step;
-      if (even) column.uniform_spacing = step;
-    }
+    column.uniform_spacing = even_step(column.depth_m);
+    if (column.uniform_spacing > 0) column.inverse_spacing = 1.0 / column.uniform_spacing;
+    column.first_slot = slot_outputs_.size();
+    slot_outputs_.insert(slot_outputs_.end(), column.index.begin(), column.index.end());
+    ranges_.push_back(range);
     columns_.push_back(std::move(column));
   }
-}
-
-std::size_t ReceiverGrid::first_column_at_or_after(double r) const {
-  auto it = std::lower_bound(columns_.begin(), columns_.end(), r,
-                             [](const ReceiverColumn& c, double x) { return c.range_m < x; });
-  return static_cast<std::size_t>(it - columns_.begin());
+  if (const double step = even_step(ranges_); step > 0) inverse_range_step_ = 1.0 / step;
+  // The columns of a rectilinear grid hold the same sorted depths (unless a
+  // range is listed twice: then that column holds them twice).
+  const bool same_depths = std::all_of(columns_.begin(), columns_.end(), [&](const ReceiverColumn& c) {
+    return c.depth_m == columns_.front().depth_m;
+  });
+  if (!columns_.empty() && same_depths) shared_depths_ = columns_.front().depth_m;
 }
 
 }  // namespace acomms::gram

@@ -11,15 +11,13 @@ SoundSpeedProfile::SoundSpeedProfile(const Environment& env) {
     speed_.push_back(point.speed_mps());
   }
   if (env.interpolation() == SSP_CUBIC_SPLINE) spline_.emplace(depth_, speed_);
+  for (std::size_t i = 0; i + 1 < depth_.size(); ++i)
+    gradient_.push_back((speed_[i + 1] - speed_[i]) / (depth_[i + 1] - depth_[i]));
 }
 
-SoundSpeedProfile::Value SoundSpeedProfile::at(double z, std::size_t i) const {
-  if (spline_) {
-    const auto v = spline_->evaluate(i, z);
-    return {v.f, v.df, v.d2f};
-  }
-  const double g = (speed_[i + 1] - speed_[i]) / (depth_[i + 1] - depth_[i]);
-  return {speed_[i] + g * (z - depth_[i]), g, 0.0};
+SoundSpeedProfile::Value SoundSpeedProfile::spline_at(double z, std::size_t i) const {
+  const auto v = spline_->evaluate(i, z);
+  return {v.f, v.df, v.d2f};
 }
 
 std::size_t SoundSpeedProfile::layer_at(double z, double heading_dz) const {

@@ -26,7 +26,11 @@ class SoundSpeedProfile {
   struct Value {
     double c, cz, czz;
   };
-  Value at(double z, std::size_t layer) const;
+  // Inline: the tracer calls this several times per step.
+  Value at(double z, std::size_t layer) const {
+    if (spline_) return spline_at(z, layer);
+    return {speed_[layer] + gradient_[layer] * (z - depth_[layer]), gradient_[layer], 0.0};
+  }
   // The layer holding z; at a node, the one below if heading down (dz > 0).
   std::size_t layer_at(double z, double heading_dz) const;
 
@@ -38,8 +42,11 @@ class SoundSpeedProfile {
   bool lands_on_nodes() const { return !spline_; }
 
  private:
+  Value spline_at(double z, std::size_t layer) const;
+
   std::vector<double> depth_;
   std::vector<double> speed_;
+  std::vector<double> gradient_;  // c_z of each layer (c-linear), computed once
   std::optional<CubicSpline> spline_;
 };
 

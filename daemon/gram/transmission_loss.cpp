@@ -24,9 +24,13 @@ namespace {
 constexpr std::size_t kChunkBudgetBytes = 48u << 20;
 constexpr std::size_t kMaxChunks = 8;
 
+// Chunk i traces beams i, i + K, i + 2K, ... (K chunks): interleaved, so
+// every chunk holds steep and shallow beams alike and costs about the same
+// (steep beams die in a few bounces, shallow ones run the whole range), and
+// two threads finish together.
 struct Chunk {
-  std::uint32_t first_beam, end_beam;
-  std::vector<std::complex<double>> pressure;
+  std::uint32_t first_beam, stride;
+  std::vector<std::complex<double>> pressure;  // in the grid's slot order
   std::vector<double> intensity;
 };
 
@@ -53,14 +57,14 @@ TransmissionLoss compute_transmission_loss(const Environment& env, const RunOpti
       std::min<std::size_t>(kMaxChunks, beams));
   std::vector<Chunk> chunks(chunk_count);
   for (std::size_t i = 0; i < chunk_count; ++i) {
-    chunks[i].first_beam = static_cast<std::uint32_t>(beams * i / chunk_count);
-    chunks[i].end_beam = static_cast<std::uint32_t>(beams * (i + 1) / chunk_count);
+    chunks[i].first_beam = static_cast<std::uint32_t>(i);
+    chunks[i].stride = static_cast<std::uint32_t>(chunk_count);
   }
 
   auto run_chunk = [&](Chunk& chunk) {
     if (coherent) chunk.pressure.assign(receivers.size(), {0.0, 0.0});
     else chunk.intensity.assign(receivers.size(), 0.0);
-    for (std::uint32_t m = chunk.first_beam; m < chunk.end_beam; ++m) {
+    for (std::uint32_t m = chunk.first_beam; m < beams; m += chunk.stride) {
       if (options.cancel && options.cancel->cancelled()) return;  // thrown below, after the join
       const double angle = a1 + m * spacing;
       BeamLaunch launch{angle, std::abs(std::cos(angle)), spacing, c_source, 1.0};
@@ -69,15 +73,20 @@ TransmissionLoss compute_transmission_loss(const Environment& env, const RunOpti
         launch.intensity_factor = 2.0 * s * s;  // Lloyd-mirror source pattern (§4.10)
       }
       RayTracer ray(medium, launch.angle_rad);
-      RayPoint previous = ray.point();
-      while (ray.next()) {
-        influence.add(previous, ray.point(), launch, chunk.pressure, chunk.intensity);
-        previous = ray.point();
-      }
+      while (ray.next())
+        influence.add(ray.previous(), ray.point(), launch, chunk.pressure, chunk.intensity);
     }
   };
   unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
   threads = std::clamp<unsigned>(threads, 1, static_cast<unsigned>(chunk_count));
+  // A run of a few thousand ray steps takes about a millisecond: starting a
+  // thread for it costs more than it saves on a busy machine (the thread
+  // may wait a time slice to run). The estimate counts full-range rays at
+  // the longest step; the result does not depend on the choice.
+  constexpr double kStepsWorthAThread = 50'000;
+  const double estimated_steps =
+      static_cast<double>(beams) * std::ceil(medium.box_range() / medium.max_step());
+  if (estimated_steps < kStepsWorthAThread) threads = 1;
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     for (std::size_t i; (i = next.fetch_add(1)) < chunk_count;) run_chunk(chunks[i]);
@@ -94,6 +103,7 @@ TransmissionLoss compute_transmission_loss(const Environment& env, const RunOpti
   result.irregular = env.irregular_receivers();
   result.beam_count = beams;
   result.tl_db.assign(receivers.size(), 0.0);
+  const auto& outputs = receivers.slot_outputs();
   for (std::size_t i = 0; i < receivers.size(); ++i) {
     double power = 0.0;
     if (coherent) {
@@ -103,7 +113,7 @@ TransmissionLoss compute_transmission_loss(const Environment& env, const RunOpti
     } else {
       for (const Chunk& chunk : chunks) power += chunk.intensity[i];
     }
-    result.tl_db[i] = power > 0 ? -10.0 * std::log10(power) : std::numeric_limits<double>::infinity();
+    result.tl_db[outputs[i]] = power > 0 ? -10.0 * std::log10(power) : std::numeric_limits<double>::infinity();
   }
   for (const auto& column : receivers.columns())
     if (column.range_m <= 0)

@@ -2,10 +2,11 @@
 //
 // Problem: GRAM and acommsctl need TL from an Environment, quickly and
 // reproducibly. Decision: the fan (spec §4.7) is split into a fixed number
-// of contiguous chunks that depends only on the grid size, never on the
-// thread count; each chunk sums its beams in order into its own buffer and
-// the buffers are added in chunk order. Threads only choose which chunk to
-// run, so the result is bit-identical whatever their number.
+// of interleaved chunks (every K-th beam) that depends only on the grid
+// size, never on the thread count; each chunk sums its beams in order into
+// its own buffer and the buffers are added in chunk order. Threads only
+// choose which chunk to run, so the result is bit-identical whatever their
+// number.
 // Thread-safe: each call is independent.
 #pragma once
 
@@ -18,7 +19,9 @@
 namespace acomms::gram {
 
 struct RunOptions {
-  unsigned threads = 0;  // 0: the hardware's concurrency
+  // 0: the hardware's concurrency. At most this many; a small run (a few
+  // thousand ray steps) runs on the calling thread alone.
+  unsigned threads = 0;
   // Polled once per beam; when cancelled the run throws ModelCancelled.
   const CancelToken* cancel = nullptr;
 };

@@ -9,6 +9,8 @@
 //
 //   build/tests/bench/gram_bench [--repeat=N]
 //   build/tests/bench/gram_bench --smoke      (what ctest runs: one quick case)
+//   build/tests/bench/gram_bench --case=bench_shallow_25k --threads=1 --repeat=1
+//                                  (one case in process, e.g. under callgrind)
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -84,11 +86,15 @@ int in_child(const Case& c, unsigned threads, int repeat) {
 int main(int argc, char** argv) {
   int repeat = 5;
   bool smoke = false;
+  const char* only = nullptr;
+  unsigned only_threads = 0;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--smoke") == 0) smoke = true;
     else if (std::strncmp(argv[i], "--repeat=", 9) == 0) repeat = std::max(1, std::atoi(argv[i] + 9));
+    else if (std::strncmp(argv[i], "--case=", 7) == 0) only = argv[i] + 7;
+    else if (std::strncmp(argv[i], "--threads=", 10) == 0) only_threads = std::max(1, std::atoi(argv[i] + 10));
     else {
-      std::fprintf(stderr, "usage: gram_bench [--repeat=N] [--smoke]\n");
+      std::fprintf(stderr, "usage: gram_bench [--repeat=N] [--smoke] [--case=NAME [--threads=N]]\n");
       return 2;
     }
   }
@@ -96,6 +102,18 @@ int main(int argc, char** argv) {
                                    {"bench_munk_field", 0.35, 100, 1},
                                    {"bench_shallow_25k", 0.3, 0, 1}};
   if (smoke) return in_child(cases[0], 2, 1);
+  if (only) {
+    // One case, in this process (no fork), so a profiler sees all of it.
+    for (const Case& c : cases)
+      if (std::strcmp(c.name, only) == 0) {
+        if (only_threads) return run_case(c, only_threads, repeat);
+        int failures = 0;
+        for (unsigned threads : {1u, 2u}) failures += in_child(c, threads, repeat) != 0;
+        return failures;
+      }
+    std::fprintf(stderr, "gram_bench: no case named %s\n", only);
+    return 2;
+  }
   int failures = 0;
   for (const Case& c : cases)
     for (unsigned threads : {1u, 2u}) failures += in_child(c, threads, repeat) != 0;

@@ -1,5 +1,6 @@
 #include "sim/sim_driver.h"
 
+#include <asio/post.hpp>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include "link/rate_table.h"
 #include "link/transmission_rules.h"
 #include "sim/loopback_medium.h"
+#include "sim/sim_physics.h"
 
 namespace acomms::drivers {
 
@@ -73,7 +75,20 @@ SimDriver::SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler,
     : SimDriver(config, scheduler, join_channel(config, channel.get()), channel ? channel->seed() : 0) {}
 
 SimDriver::SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler, asio::io_context* io_context)
-    : SimDriver(config, scheduler, loopback_or_alone(config, io_context), 0) {}
+    : SimDriver(config, scheduler, loopback_or_alone(config, io_context), 0) {
+  if (physics_ && io_context != nullptr) {
+    // Until the GRAM pool is wired in: a worker thread of this node's own,
+    // answers posted to the core thread's event loop.
+    auto worker = std::make_shared<WorkerThread>();
+    physics_->set_source(std::make_shared<ExecutorTlGridSource>(
+        [worker](std::function<void()> task) { worker->post(std::move(task)); },
+        [io_context](std::function<void()> task) { asio::post(*io_context, std::move(task)); }));
+  }
+}
+
+void SimDriver::set_tl_grid_source(std::shared_ptr<TlGridSource> source) {
+  if (physics_) physics_->set_source(std::move(source));
+}
 
 SimDriver::SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler,
                      std::unique_ptr<SimMedium> medium, uint32_t default_seed)
@@ -86,6 +101,7 @@ SimDriver::SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler,
       medium_(std::move(medium)),
       sequence_({"sim modem " + std::to_string(id_), id_},
                 {[this](const ModemTransmission& tx, bool report) { return transmit(tx, report); }}) {
+  if (config.sim().has_physics()) physics_ = SimPhysics::create(config.sim().physics(), id_);
   uint32_t seed = config.sim().seed() != 0 ? config.sim().seed() : default_seed;
   if (seed == 0) seed = std::random_device{}();
   // Mixed with the id so that nodes on one channel draw independently.
@@ -97,6 +113,9 @@ SimDriver::~SimDriver() { stop(); }
 
 void SimDriver::start(link::DriverCallbacks callbacks) {
   stop();
+  if (physics_ && !physics_->has_source())
+    throw link::DriverError("sim modem " + std::to_string(id_) +
+                            ": driver.sim.physics needs a model worker (set_tl_grid_source) on a shared channel");
   sequence_.start(std::move(callbacks));
   if (medium_) {
     try {
@@ -109,8 +128,13 @@ void SimDriver::start(link::DriverCallbacks callbacks) {
       throw;
     }
   }
-  spdlog::info("sim modem {}: at ({}, {}, {}) m, c = {} m/s", id_, position_.x, position_.y, position_.z,
-               sound_speed_);
+  const SimPosition at = position();
+  spdlog::info("sim modem {}: at ({}, {}, {}) m, c = {} m/s", id_, at.x, at.y, at.z, sound_speed_);
+  if (physics_) {
+    spdlog::info("sim modem {}: physics: SL {:.1f} dB, NL {:.1f} dB; asking the model for a TL grid", id_,
+                 physics_->link_physics().source_level_db, physics_->noise_level_db());
+    physics_->follow(at);
+  }
 }
 
 void SimDriver::stop() {
@@ -193,7 +217,8 @@ std::string SimDriver::transmit(ModemTransmission tx, bool report_result) {
   for (auto& [key, arrival] : arrivals_) {
     if (overlap(arrival.interval.start, arrival.interval.end, interval.start, interval.end)) arrival.deaf = true;
   }
-  SimEnvelope envelope{id_, position_, now, air_time, tx};
+  SimEnvelope envelope{id_, position(), now, air_time, tx};
+  if (physics_) physics_->follow(envelope.position);
   ++stats_.sent;
   if (sequence_.callbacks().on_raw) sequence_.callbacks().on_raw(encode(envelope), true);
   if (medium_) {
@@ -210,7 +235,7 @@ std::string SimDriver::transmit(ModemTransmission tx, bool report_result) {
 void SimDriver::hear(const SimEnvelope& envelope) {
   ACOMMS_ASSERT_CORE_THREAD();
   if (!sequence_.running() || envelope.sender == id_) return;
-  std::optional<SimHearing> heard = hearing(envelope, position_, sound_speed_);
+  std::optional<SimHearing> heard = hearing(envelope, position(), sound_speed_);
   if (!heard) {
     spdlog::debug("sim modem {}: packet from {} too far to arrive", id_, envelope.sender);
     return;
@@ -247,8 +272,9 @@ void SimDriver::finish_arrival(uint64_t key) {
   } else if (arrival.deaf) {
     ++stats_.lost_half_duplex;
     note_lost(arrival, "to half-duplex: it arrived while this node transmitted");
-  } else if (uniform() < loss_probability(arrival.range_m)) {
-    ++stats_.lost_random;
+  } else if (physics_ ? !decodes(arrival) : uniform() < loss_probability(arrival.range_m)) {
+    // decodes() counts its own "no model yet".
+    if (!physics_ || arrival.judgement->modelled) ++stats_.lost_random;
     spdlog::debug("sim modem {}: packet from {} lost at {:.0f} m", id_, arrival.envelope.sender,
                   arrival.range_m);
   } else {
@@ -260,6 +286,21 @@ void SimDriver::finish_arrival(uint64_t key) {
     }
     deliver(arrival);
   }
+}
+
+bool SimDriver::decodes(Arrival& arrival) {
+  const ModemTransmission& tx = arrival.envelope.transmission;
+  // Frameless packets (polls, ACKs) are FSK mini-packets: rate 0's curve.
+  const int32_t rate = tx.type() == ModemTransmission::DATA && tx.frame_size() > 0 ? tx.rate() : 0;
+  arrival.judgement = physics_->judge(arrival.envelope.sender, arrival.envelope.position, position(), rate);
+  if (!arrival.judgement->modelled) {
+    if (stats_.lost_no_model++ == 0)
+      spdlog::warn("sim modem {}: packet from {} lost: no TL grid from the model yet", id_, arrival.envelope.sender);
+    return false;
+  }
+  // One draw: survive the fixed and range losses, then decode.
+  const double p = (1.0 - loss_probability(arrival.range_m)) * arrival.judgement->probability;
+  return uniform() < p;
 }
 
 void SimDriver::note_lost(const Arrival& arrival, const char* why) {
@@ -278,6 +319,16 @@ void SimDriver::deliver(const Arrival& arrival) {
   std::snprintf(quality, sizeof quality, "sim range_m=%.1f delay_s=%.4f", arrival.range_m,
                 arrival.range_m / sound_speed_);
   rx.set_link_quality(quality);
+  if (arrival.judgement) {
+    const SimPhysics::Judgement& j = *arrival.judgement;
+    v1::ReceptionFigures* figures = rx.mutable_figures();
+    figures->set_snr_in_db(j.snr_db);
+    figures->set_range_m(j.range_m);
+    if (j.delay_spread_s) figures->set_delay_spread_s(*j.delay_spread_s);
+    std::snprintf(quality, sizeof quality, "sim range_m=%.1f delay_s=%.4f snr_db=%.1f tl_db=%.1f", arrival.range_m,
+                  arrival.range_m / sound_speed_, j.snr_db, j.tl_db);
+    rx.set_link_quality(quality);
+  }
   Clock::time_point answer_at = arrival.interval.end + kTurnaround;
   // The envelope says who really sent it: DATA under another node's id is a poll.
   sequence_.on_received(rx, {arrival.envelope.sender, [this, answer_at](std::function<void()> answer) {

@@ -39,6 +39,15 @@
 //    envelopes over UDP (sim.listen, sim.peers) on the core io_context.
 // With neither (no channel, empty sim.listen) the node is alone: its
 // transmissions go out and nobody hears them.
+//
+// With sim.physics (sim_physics.h) a packet that survives the losses above
+// also has to decode: it does with the probability its modelled SNR gives
+// (SL − TL − NL, TL from the built-in model for the two nodes' range and
+// depths), one draw per packet. The model runs on a TlGridSource, never on
+// the core thread: a loopback or lone node makes its own (a worker thread,
+// answers posted to its io_context); nodes on a SimChannel are given one
+// (set_tl_grid_source, before start). The node's position comes from a
+// NodePositionSource when one is set (its navigation), else from the config.
 
 #include <asio/io_context.hpp>
 
@@ -57,7 +66,10 @@
 #include "link/rate_table.h"
 #include "sim/sim_channel.h"
 #include "sim/sim_envelope.h"
+#include "sim/node_position_source.h"
 #include "sim/sim_medium.h"
+#include "sim/sim_physics.h"
+#include "sim/tl_grid_source.h"
 
 namespace acomms::drivers {
 
@@ -72,6 +84,7 @@ struct SimStats {
   uint64_t lost_random = 0;       // lost to the loss draw (fixed or range)
   uint64_t lost_collision = 0;    // destroyed by an overlapping packet
   uint64_t lost_half_duplex = 0;  // arrived while this node transmitted
+  uint64_t lost_no_model = 0;     // physics: heard before the first TL grid arrived
   uint64_t garbage = 0;           // malformed loopback datagrams dropped
 };
 
@@ -93,9 +106,17 @@ class SimDriver final : public link::Driver {
   link::DriverCounters counters() const override;
 
   int32_t modem_id() const { return id_; }
-  const SimPosition& position() const { return position_; }
+  // Where the node is now: its position source's, else the config's (or
+  // the last set_position()).
+  SimPosition position() const { return position_source_ ? position_source_->position() : position_; }
   // Moves the node (a vehicle under way); later transmissions see it there.
   void set_position(const SimPosition& position) { position_ = position; }
+  // Takes the position from `source` from now on (null: back to the config's).
+  void set_position_source(std::shared_ptr<const NodePositionSource> source) { position_source_ = std::move(source); }
+  // Where model runs go (physics only). Replaces the node's own worker.
+  void set_tl_grid_source(std::shared_ptr<TlGridSource> source);
+  // The physics (null without sim.physics), for status and tests.
+  const SimPhysics* physics() const { return physics_.get(); }
   const SimStats& stats() const;
   // Loss probability at range `range_m` (see the file comment).
   double loss_probability(double range_m) const;
@@ -112,10 +133,15 @@ class SimDriver final : public link::Driver {
     double range_m = 0;
     bool collided = false;
     bool deaf = false;  // overlapped one of our transmissions
+    std::optional<SimPhysics::Judgement> judgement;  // physics only
   };
 
   SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler, std::unique_ptr<SimMedium> medium,
             uint32_t default_seed);
+
+  // Whether a packet that survived the other losses decodes (physics);
+  // fills the figures of `arrival` for deliver().
+  bool decodes(Arrival& arrival);
 
   void hear(const SimEnvelope& envelope);
   void finish_arrival(uint64_t key);
@@ -138,6 +164,8 @@ class SimDriver final : public link::Driver {
   double max_range_m_;
   core::Scheduler& scheduler_;
   std::unique_ptr<SimMedium> medium_;
+  std::shared_ptr<const NodePositionSource> position_source_;
+  std::shared_ptr<SimPhysics> physics_;  // shared: model answers hold it weakly
   std::mt19937_64 rng_;
   link::DriverSequence sequence_;  // holds the callbacks between start() and stop()
   core::Clock::time_point busy_until_;

@@ -10,9 +10,12 @@
 
 #include "link/driver_registry.h"
 #include "sim/sim_channel.h"
+#include "sim/tl_grid_source.h"
 
 namespace acomms::drivers {
 
-void register_sim_channel_driver(link::DriverRegistry& registry, std::shared_ptr<SimChannel> channel);
+// `model`: where nodes with sim.physics run the model (the GRAM pool).
+void register_sim_channel_driver(link::DriverRegistry& registry, std::shared_ptr<SimChannel> channel,
+                                 std::shared_ptr<TlGridSource> model = nullptr);
 
 }  // namespace acomms::drivers
