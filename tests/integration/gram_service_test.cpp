@@ -153,7 +153,9 @@ TEST_F(GramServiceTest, TransmissionLossRunsAndAnIdenticalRequestIsACacheHit) {
   EXPECT_TRUE(second.from_cache());
   EXPECT_EQ(second.tl_db_size(), first.tl_db_size());
   for (int i = 0; i < first.tl_db_size(); ++i)
-    if (!std::isnan(first.tl_db(i))) ASSERT_EQ(second.tl_db(i), first.tl_db(i)) << i;
+    if (!std::isnan(first.tl_db(i))) {
+      ASSERT_EQ(second.tl_db(i), first.tl_db(i)) << i;
+    }
   EXPECT_EQ(pool().cache_hits(), 1u);
 }
 
@@ -331,7 +333,9 @@ TEST_F(GramServiceTest, DepthObjectiveAveragesTheInstancesAsTheConformanceFilesS
     const auto& r = response.reply();
     EXPECT_EQ(response.instances(), 2u);
     const double delta_r = std::stod(row.at("delta_r_m"));
-    if (!r.window_widened()) EXPECT_NEAR(r.window_end_m() - r.window_begin_m(), std::abs(delta_r), 1e-6) << "row " << w;
+    if (!r.window_widened()) {
+      EXPECT_NEAR(r.window_end_m() - r.window_begin_m(), std::abs(delta_r), 1e-6) << "row " << w;
+    }
     gram::RangeWindow window;
     window.begin_m = r.window_begin_m();
     window.end_m = r.window_end_m();
@@ -376,9 +380,10 @@ TEST_F(GramServiceTest, DepthObjectiveAveragesTheInstancesAsTheConformanceFilesS
     ASSERT_TRUE(status.ok()) << status.error_message();
     for (const auto& p : response.reply().points()) {
       EXPECT_NEAR(p.noise_level_db(), std::stod(row.at("nl_db")), 1e-3);
-      if (std::isfinite(p.h_bar_db()))
+      if (std::isfinite(p.h_bar_db())) {
         EXPECT_NEAR(p.signal_excess_db(),
                     std::stod(row.at("sl_db")) - p.h_bar_db() - p.noise_level_db() + std::stod(row.at("ag_db")), 1e-3);
+      }
     }
   }
 
