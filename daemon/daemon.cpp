@@ -118,7 +118,7 @@ void Daemon::build_link() {
     for (const auto& n : known) list += (list.empty() ? "" : ", ") + n;
     throw std::runtime_error("driver.name \"" + name + "\" is not a driver (known: " + list + ")");
   }
-  link::DriverContext context{config_.driver(), *scheduler_, &core_->context()};
+  link::DriverContext context{config_.driver(), *scheduler_, &core_->context(), gram_.pool.get()};
   // Built once now so that a bad driver block is a start-up error.
   try {
     (void)drivers_.create(name, context);
@@ -131,7 +131,7 @@ void Daemon::build_link() {
   options.driver_name = name;
   driver_ = std::make_unique<link::DriverSupervisor>(
       [this, name] {
-        link::DriverContext context{config_.driver(), *scheduler_, &core_->context()};
+        link::DriverContext context{config_.driver(), *scheduler_, &core_->context(), gram_.pool.get()};
         return drivers_.create(name, context);
       },
       *scheduler_, options);
@@ -193,13 +193,14 @@ void Daemon::stop() {
   if (server_) server_->shutdown(std::chrono::seconds(2));
   server_.reset();
   gram_api_.reset();
-  // Waiting model requests are answered, running ones cancelled, workers joined.
-  gram_.pool.reset();
-  gram_.environment.reset();
   if (core_) core_->stop();
   link_.reset();
   mac_.reset();
   driver_.reset();
+  // After the driver (the simulator asks the pool for models): waiting
+  // requests are answered, running ones cancelled, the workers joined.
+  gram_.pool.reset();
+  gram_.environment.reset();
   scheduler_.reset();
   expiry_timer_.reset();
   core_.reset();

@@ -22,6 +22,10 @@
 #include "core/scheduler.h"
 #include "link/driver.h"
 
+namespace acomms::gram {
+class ModelPool;
+}
+
 namespace acomms::link {
 
 // What a driver is built with.
@@ -32,6 +36,10 @@ struct DriverContext {
   // ("udp", "sim" over loopback). Null where there is none (tests on the
   // simulated scheduler); such drivers then refuse to be built.
   asio::io_context* io_context = nullptr;
+  // GRAM's model worker pool (gram/model_pool.h), for drivers that run the
+  // acoustic model (the simulator's physics). Null: such a driver brings a
+  // thread of its own.
+  gram::ModelPool* models = nullptr;
 };
 
 using DriverFactory = std::function<std::unique_ptr<Driver>(const DriverContext&)>;

@@ -6,7 +6,7 @@ namespace acomms::drivers {
 namespace {
 
 const link::DriverRegistrar registrar("sim", [](const link::DriverContext& context) -> std::unique_ptr<link::Driver> {
-  return std::make_unique<SimDriver>(context.config, context.scheduler, context.io_context);
+  return std::make_unique<SimDriver>(context.config, context.scheduler, context.io_context, context.models);
 });
 
 }  // namespace
