@@ -14,6 +14,7 @@
 #include "gram/profile_merge.h"
 #include "gram/transmission_loss.h"
 #include "gram_plot.h"
+#include "gram_service_command.h"
 #include "rpc_error.h"  // UsageError
 
 namespace acomms::cli {
@@ -113,11 +114,11 @@ void run_arrivals(const GramOptions& o) {
 
 }  // namespace
 
-CLI::App* add_gram_command(CLI::App& app) {
+CLI::App* add_gram_command(CLI::App& app, const GlobalOptions& global) {
   static GramOptions options;
   CLI::App* gram = app.add_subcommand(
-      "gram", "The built-in acoustic model, offline: sound speed from a CTD cast, transmission loss "
-              "and arrivals from a BELLHOP-format environment (.env)");
+      "gram", "The acoustic model: offline (ssp, tl, arrivals: sound speed from a CTD cast, transmission "
+              "loss and arrivals from a BELLHOP-format environment), or the daemon's (depth, env)");
   gram->require_subcommand(1);
 
   CLI::App* ssp = gram->add_subcommand(
@@ -146,6 +147,8 @@ CLI::App* add_gram_command(CLI::App& app) {
   arrivals->add_option("--env", options.env, "BELLHOP-format environment")->required()->type_name("FILE.env");
   arrivals->add_option("--at", options.at, "The receiver: range (m) and depth (m)")->required()->type_name("RANGE_M,DEPTH_M");
   arrivals->callback([] { run_arrivals(options); });
+
+  add_gram_service_commands(*gram, global);
   return gram;
 }
 

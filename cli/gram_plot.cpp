@@ -88,4 +88,37 @@ void write_tl_png(const std::string& path, const gram::TransmissionLoss& tl, con
     throw std::runtime_error("cannot write " + path);
 }
 
+void write_objective_png(const std::string& path, const gram::DepthObjectiveReply& reply) {
+  constexpr int kWidth = 400;
+  const auto& points = reply.points();
+  if (points.empty()) throw std::runtime_error("no depths to plot");
+  const double z_top = points[0].depth_m(), z_bottom = points[points.size() - 1].depth_m();
+  const double span = std::max(z_bottom - z_top, 1.0);
+  std::vector<Rgb> image(static_cast<std::size_t>(kWidth) * kHeight, Rgb{255, 255, 255});
+  auto pixel = [&](int x, int y) -> Rgb& {
+    return image[static_cast<std::size_t>(std::clamp(y, 0, kHeight - 1)) * kWidth + std::clamp(x, 0, kWidth - 1)];
+  };
+  auto row = [&](double z) { return static_cast<int>((z - z_top) / span * (kHeight - 1)); };
+  auto column = [&](double o) { return static_cast<int>(std::clamp(o, 0.0, 1.0) * (kWidth - 1)); };
+  // Not allowed: beyond the best-depth search's deepest allowed depth.
+  for (const auto& p : points)
+    if (p.depth_m() > reply.bottom_m())
+      for (int x = 0; x < kWidth; ++x) pixel(x, row(p.depth_m())) = {235, 235, 235};
+  for (int i = 1; i < points.size(); ++i) {
+    const int y0 = row(points[i - 1].depth_m()), y1 = row(points[i].depth_m());
+    for (int y = y0; y <= y1; ++y) {
+      const double t = y1 == y0 ? 1.0 : double(y - y0) / (y1 - y0);
+      auto at = [&](double a, double b) { return column(a + t * (b - a)); };
+      pixel(at(points[i - 1].objective(), points[i].objective()), y) = {150, 150, 150};
+      const int x = at(points[i - 1].objective_filtered(), points[i].objective_filtered());
+      for (int dx = -1; dx <= 1; ++dx) pixel(x + dx, y) = {0, 0, 0};
+    }
+  }
+  const int best = row(reply.best_depth_m());
+  for (int x = 0; x < kWidth; ++x)
+    for (int dy = -1; dy <= 1; ++dy) pixel(x, best + dy) = {200, 0, 0};
+  if (!stbi_write_png(path.c_str(), kWidth, kHeight, 3, image.data(), kWidth * 3))
+    throw std::runtime_error("cannot write " + path);
+}
+
 }  // namespace acomms::cli

@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "acomms/gram/depth_objective.pb.h"
 #include "acomms/gram/environment.pb.h"
 #include "gram/transmission_loss.h"
 
@@ -15,5 +16,10 @@ namespace acomms::cli {
 // Writes `path` as PNG; throws std::runtime_error if it cannot be written.
 void write_tl_png(const std::string& path, const gram::TransmissionLoss& tl,
                   const gram::Environment& env);
+
+// The depth objective, for `acommsctl gram depth --png`: depth down, the
+// objective across [0, 1]; raw in grey, filtered in black, the best depth
+// as a red line, depths below the window's shallowest bottom shaded. No text.
+void write_objective_png(const std::string& path, const gram::DepthObjectiveReply& reply);
 
 }  // namespace acomms::cli

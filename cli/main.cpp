@@ -42,7 +42,7 @@ void add_commands(CLI::App& app, const acomms::cli::GlobalOptions& options) {
   add_track_command(app, options);
   add_dccl_command(app, options);
   add_sim_command(app, options);
-  add_gram_command(app);
+  add_gram_command(app, options);
   add_completion_command(app);
 }
 

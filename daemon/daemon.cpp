@@ -49,6 +49,7 @@ void Daemon::start() {
   std::vector<service::RecordedDefinition> api_definitions =
       service::DefinitionLoader::read_recorded(store_->db());
   const telemetry::StoredStreams telemetry_stored = telemetry::TelemetryNode::read_state(store_->db());
+  gram_ = make_gram(config_.gram(), config_.data_dir(), store_->db());
   // From here on only the writer's thread touches the store's connection.
   writer_ = std::make_unique<store::GroupCommitWriter>(store_->db());
   journal_ = std::make_unique<queue::SqliteJournal>(*writer_);
@@ -97,9 +98,12 @@ void Daemon::start() {
       std::move(identity), service::Node{*codec_, *queues_, *submitter_, *core_, {*mac_, *driver_, *link_},
                                          *definitions_, *events_, subscribers_, *telemetry_, *track_});
 
+  gram_api_ = std::make_unique<service::GramService>(*gram_.pool, *gram_.environment,
+                                                     save_environment_to(*writer_));
+
   server_ = std::make_unique<service::GrpcServer>(
       service::endpoints_of(config_.grpc()),
-      std::vector<grpc::Service*>{api_.get()});
+      std::vector<grpc::Service*>{api_.get(), gram_api_.get()});
   server_->set_serving(true);
   core::systemd_notify("READY=1\nSTATUS=serving");
   spdlog::info("acommsd {} serving (data dir {})", ACOMMS_VERSION, config_.data_dir());
@@ -126,7 +130,8 @@ void Daemon::build_link() {
     for (const auto& n : known) list += (list.empty() ? "" : ", ") + n;
     throw std::runtime_error("driver.name \"" + name + "\" is not a driver (known: " + list + ")");
   }
-  link::DriverContext context{config_.driver(), *scheduler_, &core_->context(), &node_position_};
+  link::DriverContext context{config_.driver(), *scheduler_, &core_->context(), &node_position_,
+                              gram_.pool.get()};
   // Built once now so that a bad driver block is a start-up error.
   try {
     (void)drivers_.create(name, context);
@@ -139,7 +144,8 @@ void Daemon::build_link() {
   options.driver_name = name;
   driver_ = std::make_unique<link::DriverSupervisor>(
       [this, name] {
-        link::DriverContext context{config_.driver(), *scheduler_, &core_->context(), &node_position_};
+        link::DriverContext context{config_.driver(), *scheduler_, &core_->context(), &node_position_,
+                                    gram_.pool.get()};
         return drivers_.create(name, context);
       },
       *scheduler_, options);
@@ -221,7 +227,7 @@ void Daemon::schedule_expiry() {
 }
 
 void Daemon::stop() {
-  if (!server_ && !core_ && !store_) return;
+  if (!server_ && !core_ && !store_ && !gram_.pool) return;
   core::systemd_notify("STOPPING=1");
   // The link stops first: the server's shutdown may take its whole grace
   // period (an idle client connection holds it), and nothing should go on
@@ -243,10 +249,15 @@ void Daemon::stop() {
     }
     core_->call([] {});
   }
+  gram_api_.reset();
   if (core_) core_->stop();
   link_.reset();
   mac_.reset();
   driver_.reset();
+  // After the driver (the simulator asks the pool for models): waiting
+  // requests are answered, running ones cancelled, the workers joined.
+  gram_.pool.reset();
+  gram_.environment.reset();
   scheduler_.reset();
   expiry_timer_.reset();
   core_.reset();

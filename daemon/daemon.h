@@ -24,6 +24,8 @@
 #include "queue/sqlite_journal.h"
 #include "queue/submitter.h"
 #include "store/group_commit_writer.h"
+#include "gram_setup.h"
+#include "service/gram_service.h"
 #include "service/grpc_server.h"
 #include "service/acomms_service.h"
 #include "service/definition_loader.h"
@@ -89,6 +91,9 @@ class Daemon {
   std::unique_ptr<telemetry::TelemetryNode> telemetry_;
   std::unique_ptr<telemetry::TrackReader> track_;
   std::unique_ptr<service::AcommsService> api_;
+  // GRAM: the environment the vehicle knows and the model worker pool.
+  GramParts gram_;
+  std::unique_ptr<service::GramService> gram_api_;
   std::unique_ptr<service::GrpcServer> server_;
 };
 

@@ -130,6 +130,7 @@ std::vector<ReceiverArrivals> compute_arrivals(const Environment& env, const Arr
 
   std::vector<std::vector<Candidate>> candidates(receivers.size());
   for (std::uint32_t m = 0; m < beams; ++m) {
+    throw_if_cancelled(options.cancel);
     const double angle = a1 + m * spacing;
     RayTracer ray(medium, angle);
     while (ray.next())

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "acomms/gram/environment.pb.h"
+#include "gram/cancel_token.h"
 
 namespace acomms::gram {
 
@@ -33,6 +34,7 @@ struct ReceiverArrivals {
 
 struct ArrivalOptions {
   std::size_t max_arrivals = 200;  // per receiver, the strongest kept
+  const CancelToken* cancel = nullptr;  // polled once per beam (ModelCancelled)
 };
 
 // For the environment's receivers (grid: depth-major, like TL). Throws

@@ -65,6 +65,7 @@ TransmissionLoss compute_transmission_loss(const Environment& env, const RunOpti
     if (coherent) chunk.pressure.assign(receivers.size(), {0.0, 0.0});
     else chunk.intensity.assign(receivers.size(), 0.0);
     for (std::uint32_t m = chunk.first_beam; m < beams; m += chunk.stride) {
+      if (options.cancel && options.cancel->cancelled()) return;  // thrown below, after the join
       const double angle = a1 + m * spacing;
       BeamLaunch launch{angle, std::abs(std::cos(angle)), spacing, c_source, 1.0};
       if (env.field_mode() == SEMI_COHERENT) {
@@ -94,6 +95,7 @@ TransmissionLoss compute_transmission_loss(const Environment& env, const RunOpti
   for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
   worker();
   for (auto& t : pool) t.join();
+  throw_if_cancelled(options.cancel);
 
   TransmissionLoss result;
   result.range_m.assign(env.receiver_range_m().begin(), env.receiver_range_m().end());

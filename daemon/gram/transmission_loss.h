@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "acomms/gram/environment.pb.h"
+#include "gram/cancel_token.h"
 
 namespace acomms::gram {
 
@@ -21,6 +22,8 @@ struct RunOptions {
   // 0: the hardware's concurrency. At most this many; a small run (a few
   // thousand ray steps) runs on the calling thread alone.
   unsigned threads = 0;
+  // Polled once per beam; when cancelled the run throws ModelCancelled.
+  const CancelToken* cancel = nullptr;
 };
 
 struct TransmissionLoss {
@@ -33,7 +36,8 @@ struct TransmissionLoss {
   std::uint32_t beam_count = 0;  // the count used (automatic if the input gave 0)
 };
 
-// Throws std::invalid_argument with validate_environment's message.
+// Throws std::invalid_argument with validate_environment's message, or
+// ModelCancelled when options.cancel was cancelled during the run.
 TransmissionLoss compute_transmission_loss(const Environment& env, const RunOptions& options = {});
 
 }  // namespace acomms::gram

@@ -23,6 +23,10 @@
 #include "core/scheduler.h"
 #include "link/driver.h"
 
+namespace acomms::gram {
+class ModelPool;
+}
+
 namespace acomms::link {
 
 // What a driver is built with.
@@ -37,6 +41,10 @@ struct DriverContext {
   // drivers that model position: the simulator. Null: none (tests), or the
   // driver's own config.
   const core::NodePosition* node_position = nullptr;
+  // GRAM's model worker pool (gram/model_pool.h), for drivers that run the
+  // acoustic model (the simulator's physics). Null: such a driver brings a
+  // thread of its own.
+  gram::ModelPool* models = nullptr;
 };
 
 using DriverFactory = std::function<std::unique_ptr<Driver>(const DriverContext&)>;

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "acomms/v1/acomms.grpc.pb.h"
+#include "acomms/v1/gram.grpc.pb.h"
 #include "service/tls_refusal_log.h"
 #include "core/pem_files.h"
 
@@ -115,7 +116,7 @@ GrpcServer::GrpcServer(const Endpoints& endpoints, const std::vector<grpc::Servi
   }
   ::chmod(unix_socket_.c_str(), 0660);
 
-  service_names_ = {v1::Acomms::service_full_name()};
+  service_names_ = {v1::Acomms::service_full_name(), v1::Gram::service_full_name()};
   std::string tcp;
   if (!endpoints.tcp_listen.empty()) {
     tcp = " and tcp " + endpoints.tcp_listen;

@@ -24,6 +24,7 @@
 #include <fstream>
 #include <map>
 
+#include "acomms/v1/gram.grpc.pb.h"
 #include "daemon_harness.h"
 #include "gram/bellhop_import.h"
 #include "gram/tl_lookup.h"
@@ -170,6 +171,13 @@ TEST_F(PhysicsTwoNode, AtTheDepthTheModelShadowsNothingArrivesAndAtTheLitDepthIt
   ASSERT_TRUE(status.link().has_snr_in_db()) << status.DebugString();
   // The topside's grid has itself (60 m) as the source: the same model.
   EXPECT_NEAR(status.link().snr_in_db(), 190 - tl_lit - kNoiseDb, 1e-6);
+  // That grid was run by the daemon's GRAM pool, not a thread of the driver's.
+  auto gram = v1::Gram::NewStub(grpc::CreateChannel("unix:" + socket(2), grpc::InsecureChannelCredentials()));
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + 10s);
+  v1::PoolStatusReply pool;
+  ASSERT_TRUE(gram->PoolStatus(&context, v1::PoolStatusRequest(), &pool).ok());
+  EXPECT_GE(pool.completed(), 1u);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "link/rate_table.h"
 #include "link/transmission_rules.h"
 #include "sim/loopback_medium.h"
+#include "sim/pool_tl_grid_source.h"
 #include "sim/sim_physics.h"
 
 namespace acomms::drivers {
@@ -74,11 +75,16 @@ SimDriver::SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler,
                      std::shared_ptr<SimChannel> channel)
     : SimDriver(config, scheduler, join_channel(config, channel.get()), channel ? channel->seed() : 0) {}
 
-SimDriver::SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler, asio::io_context* io_context)
+SimDriver::SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler, asio::io_context* io_context,
+                     gram::ModelPool* models)
     : SimDriver(config, scheduler, loopback_or_alone(config, io_context), 0) {
-  if (physics_ && io_context != nullptr) {
-    // Until the GRAM pool is wired in: a worker thread of this node's own,
-    // answers posted to the core thread's event loop.
+  if (physics_ && io_context != nullptr && models != nullptr) {
+    // The daemon's GRAM pool; answers posted to the core thread's event loop.
+    physics_->set_source(std::make_shared<PoolTlGridSource>(
+        *models, [io_context](std::function<void()> task) { asio::post(*io_context, std::move(task)); }));
+  } else if (physics_ && io_context != nullptr) {
+    // No pool (a program without the daemon): a worker thread of this
+    // node's own, answers posted to the core thread's event loop.
     auto worker = std::make_shared<WorkerThread>();
     physics_->set_source(std::make_shared<ExecutorTlGridSource>(
         [worker](std::function<void()> task) { worker->post(std::move(task)); },

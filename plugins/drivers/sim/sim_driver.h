@@ -69,6 +69,10 @@
 #include "sim/node_position_source.h"
 #include "sim/sim_medium.h"
 #include "sim/sim_physics.h"
+
+namespace acomms::gram {
+class ModelPool;
+}
 #include "sim/tl_grid_source.h"
 
 namespace acomms::drivers {
@@ -93,7 +97,10 @@ class SimDriver final : public link::Driver {
   // In process: the node joins `channel` when started.
   SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler, std::shared_ptr<SimChannel> channel);
   // Loopback (config.sim.listen set; needs `io_context`) or alone.
-  SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler, asio::io_context* io_context);
+  // With physics, the model runs on `models` (GRAM's pool) when given, else
+  // on a worker thread of the driver's own.
+  SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler, asio::io_context* io_context,
+            gram::ModelPool* models = nullptr);
   ~SimDriver() override;
 
   void start(link::DriverCallbacks callbacks) override;

@@ -14,7 +14,7 @@ void follow_navigation(SimDriver& driver, const link::DriverContext& context) {
 }
 
 const link::DriverRegistrar registrar("sim", [](const link::DriverContext& context) -> std::unique_ptr<link::Driver> {
-  auto driver = std::make_unique<SimDriver>(context.config, context.scheduler, context.io_context);
+  auto driver = std::make_unique<SimDriver>(context.config, context.scheduler, context.io_context, context.models);
   follow_navigation(*driver, context);
   return driver;
 });

@@ -8,8 +8,8 @@
 // using the last grid it has, and takes the new one when the source calls
 // back — always on the core thread, so the driver's state stays lock-free.
 // The source behind the seam: ExecutorTlGridSource with two executors, one
-// that runs work off the core thread (the GRAM worker pool once wired; a
-// thread of its own until then, WorkerThread) and one that posts back to the
+// that runs work off the core thread (WorkerThread, for programs without the
+// daemon; acommsd uses PoolTlGridSource, pool_tl_grid_source.h) and one that posts back to the
 // core thread (asio::post on its io_context). Tests put a stand-in they can
 // block in either place.
 // Thread rules: request() on the core thread only; `done` runs on the core
@@ -56,7 +56,7 @@ class TlGridSource {
 // Runs the model (compute_transmission_loss / compute_arrivals); any thread.
 ModelAnswer run_model(const ModelRun& run);
 
-// The seam: `worker` runs a task off the core thread (the GRAM pool),
+// The seam: `worker` runs a task off the core thread (e.g. WorkerThread),
 // `to_core` runs a task on the core thread later.
 class ExecutorTlGridSource final : public TlGridSource {
  public:
@@ -69,7 +69,7 @@ class ExecutorTlGridSource final : public TlGridSource {
 };
 
 // One thread that runs tasks in order, idle (blocked, no CPU) when there
-// are none: the sim driver's worker until the GRAM pool is wired in. The
+// are none: the sim driver's worker when no GRAM pool is given. The
 // destructor drops tasks not yet begun and waits for the running one.
 class WorkerThread {
  public:
