@@ -192,11 +192,9 @@ TEST_F(PhysicsTwoNode, AtTheDepthTheModelShadowsNothingArrivesAndAtTheLitDepthIt
   ASSERT_TRUE(topside.received().empty()) << "heard from the shadow: " << topside.received().front().DebugString();
 
   // The same running vehicle dives to 60 m: the same Status arrives.
-  ChildProcess* vehicle = daemons_[1].get();
   navigate_vehicle(kRange, 60);
   ASSERT_TRUE(topside.wait_for([](const auto& got) { return !got.empty(); }, 60s)) << daemons_[1]->stderr_text();
-  EXPECT_EQ(daemons_[1].get(), vehicle);
-  EXPECT_TRUE(vehicle->running());
+  EXPECT_TRUE(daemons_[1]->running()) << daemons_[1]->stderr_text();
   const v1::ReceivedMessage status = topside.received().front();
   EXPECT_EQ(status.src(), 1);
   ASSERT_TRUE(status.link().has_snr_in_db()) << status.DebugString();
