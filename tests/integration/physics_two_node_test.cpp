@@ -10,15 +10,18 @@
 // the PSK curve's midpoint (14 dB) lies between: at 5 m a packet decodes
 // with p ≈ 5e-4, at 60 m with p ≈ 0.9997.
 //
-// Until the navigation input (telemetry's SubmitNavigation) feeds the sim
-// driver's NodePositionSource, the vehicle changes depth by a restart with
-// a new config position: first at 5 m, where its Status is sent again and
-// again and never arrives, then at 60 m, where the same queued Status
-// arrives, with the modelled SNR in its link figures.
+// One vehicle daemon runs throughout; only its navigation input moves it.
+// Its config puts it at 600 m and 60 m deep (lit), but the first fix
+// (SubmitNavigation, local x/y as acommsctl nav sends them) puts it 1000 m
+// away at 5 m before anything is queued: its Status is sent again and again
+// and never arrives. A second fix takes it down to 60 m, and the same queued
+// Status arrives, with the modelled SNR for 1000 m and 60 m in its link
+// figures (the range there shows the fix, not the config, placed it).
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -108,6 +111,27 @@ class PhysicsTwoNode : public ::testing::Test {
     EXPECT_EQ(daemon->wait(15s), std::optional<int>(0)) << name(id) << ":\n" << daemon->stderr_text();
   }
 
+  // A navigation fix for the vehicle (local metres from the telemetry
+  // datum; no telemetry config needed), answered once the daemon took it.
+  void navigate_vehicle(double x, double depth) {
+    // Fixes must move time forward; the wall clock may not have.
+    fix_time_ = std::max(fix_time_ + 1,
+                         std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
+    grpc::ClientContext context;
+    v1::SubmitNavigationResponse response;
+    auto writer = api(socket(1))->SubmitNavigation(&context, &response);
+    v1::NavigationFix fix;
+    fix.set_time(fix_time_);
+    fix.mutable_local()->set_x(x);
+    fix.mutable_local()->set_y(0);
+    fix.set_depth(depth);
+    ASSERT_TRUE(writer->Write(fix));
+    writer->WritesDone();
+    grpc::Status status = writer->Finish();
+    ASSERT_TRUE(status.ok()) << status.error_message();
+    ASSERT_EQ(response.accepted_fixes(), 1u);
+  }
+
   int64_t submit_status() {
     grpc::ClientContext context;
     v1::SubmitRequest request;
@@ -146,6 +170,7 @@ class PhysicsTwoNode : public ::testing::Test {
   fs::path dir_;
   std::map<int, int> port_;
   std::map<int, std::unique_ptr<ChildProcess>> daemons_;
+  double fix_time_ = 0;
 };
 
 TEST_F(PhysicsTwoNode, AtTheDepthTheModelShadowsNothingArrivesAndAtTheLitDepthItDoes) {
@@ -154,21 +179,27 @@ TEST_F(PhysicsTwoNode, AtTheDepthTheModelShadowsNothingArrivesAndAtTheLitDepthIt
   ASSERT_LT(tl_lit, 190 - kNoiseDb - 14 - 5) << "the model no longer lights 60 m";
 
   start(2, 0, 60);
-  start(1, kRange, 5);
+  // Lit where the config puts it: only the navigation can shadow it.
+  start(1, 600, 60);
   StreamSubscriber topside(socket(2), "example.Status");
+  navigate_vehicle(kRange, 5);
   const int64_t id = submit_status();
   ASSERT_GT(id, 0);
   // At 5 m: sent in four vehicle slots, never heard (p ≈ 5e-4 each).
-  ASSERT_TRUE(wait_until([&] { return times_sent(id) >= 4; }, 90s, 200ms)) << daemons_[1]->stderr_text();
-  EXPECT_TRUE(topside.received().empty()) << "heard from the shadow";
+  // (An arrival ends the wait too: a message heard is not sent again.)
+  ASSERT_TRUE(wait_until([&] { return times_sent(id) >= 4 || !topside.received().empty(); }, 90s, 200ms))
+      << daemons_[1]->stderr_text();
+  ASSERT_TRUE(topside.received().empty()) << "heard from the shadow: " << topside.received().front().DebugString();
 
-  // The vehicle dives to 60 m: the same Status arrives.
-  stop(1);
-  start(1, kRange, 60);
+  // The same running vehicle dives to 60 m: the same Status arrives.
+  navigate_vehicle(kRange, 60);
   ASSERT_TRUE(topside.wait_for([](const auto& got) { return !got.empty(); }, 60s)) << daemons_[1]->stderr_text();
+  EXPECT_TRUE(daemons_[1]->running()) << daemons_[1]->stderr_text();
   const v1::ReceivedMessage status = topside.received().front();
   EXPECT_EQ(status.src(), 1);
   ASSERT_TRUE(status.link().has_snr_in_db()) << status.DebugString();
+  // Where the fix put it, not the config.
+  EXPECT_NE(status.link().link_quality().find("range_m=1000.0 "), std::string::npos) << status.DebugString();
   // The topside's grid has itself (60 m) as the source: the same model.
   EXPECT_NEAR(status.link().snr_in_db(), 190 - tl_lit - kNoiseDb, 1e-6);
   // That grid was run by the daemon's GRAM pool, not a thread of the driver's.
