@@ -300,10 +300,14 @@ TEST_F(DaemonTest, StartupErrorsExitNonZeroWithTheReason) {
 
 TEST_F(DaemonTest, LoadsDcclDefinitionsFromConfig) {
   const std::string gv = ACOMMS_SHARED_DIR "/conformance/dccl/gv.proto";
-  std::ifstream proto(gv);
-  std::string text((std::istreambuf_iterator<char>(proto)), std::istreambuf_iterator<char>());
+  // The configured file's types, plus position telemetry's, which the
+  // daemon always loads (api/proto/acomms/telemetry/messages.proto).
   int expected_types = 0;
-  for (size_t at = 0; (at = text.find("option (dccl.msg)", at)) != std::string::npos; ++at) ++expected_types;
+  for (const std::string& file : {gv, std::string(ACOMMS_SOURCE_DIR "/api/proto/acomms/telemetry/messages.proto")}) {
+    std::ifstream proto(file);
+    std::string text((std::istreambuf_iterator<char>(proto)), std::istreambuf_iterator<char>());
+    for (size_t at = 0; (at = text.find("option (dccl.msg)", at)) != std::string::npos; ++at) ++expected_types;
+  }
 
   std::ofstream(config_, std::ios::app) << "dccl { proto_files: \"" << gv << "\" passphrase: \"x\" }\n";
   auto daemon = start_daemon("dccl");

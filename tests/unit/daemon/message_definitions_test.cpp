@@ -108,6 +108,27 @@ TEST(MessageDefinitions, BrokenDefinitionsNameTheFileAndField) {
   fs::remove(file);
 }
 
+// Position telemetry's ids (110, 111) are reserved: the daemon loads its
+// types first, so a file whose type claims one is refused at load (a
+// start-up error, as any clash of ids), naming both types.
+TEST(MessageDefinitions, AUserTypeClaimingATelemetryIdIsRefusedNamingBoth) {
+  fs::path file = fs::temp_directory_path() / ("acomms-clash-" + std::to_string(::getpid()) + ".proto");
+  std::ofstream(file) << "syntax = \"proto2\";\nimport \"dccl/option_extensions.proto\";\npackage mine;\n"
+                         "message Clash {\n  option (dccl.msg) = { codec_version: 4 id: 110 max_bytes: 8 };\n"
+                         "  optional int32 x = 1 [(dccl.field) = { min: 0 max: 10 }];\n}\n";
+  try {
+    make_codec(dccl_config("proto_files: \"" + file.string() + "\""));
+    ADD_FAILURE() << "a type claiming telemetry's id 110 loaded";
+  } catch (const std::runtime_error& e) {
+    std::string what = e.what();
+    EXPECT_EQ(what.rfind("dccl definitions " + file.string() + ":\n", 0), 0u) << what;
+    EXPECT_NE(what.find("mine.Clash: DCCL id 110 is already used by acomms.telemetry.PositionFull"),
+              std::string::npos)
+        << what;
+  }
+  fs::remove(file);
+}
+
 // The arithmetic codec's model comes from config; the spec vector: values
 // [0,0,0,1] with this model encode to 020b.
 TEST(MessageDefinitions, ArithmeticModelsComeFromConfig) {
