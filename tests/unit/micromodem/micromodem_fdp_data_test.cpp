@@ -49,10 +49,23 @@ struct Node {
   }
   void start() {
     link::DriverCallbacks callbacks;
-    callbacks.on_receive = [this](const ModemTransmission& tx) { received.push_back(tx); };
+    callbacks.on_receive = [this](const ModemTransmission& tx) {
+      received.push_back(tx);
+      // As the queues do: an ACK for us removes the frames it names.
+      if (tx.type() != ModemTransmission::ACK || tx.dest() != this->config.modem_id() || asked.empty()) return;
+      std::vector<std::string> left;
+      for (size_t i = 0; i < to_send.size(); ++i) {
+        bool acked = false;
+        for (uint32_t frame : tx.acked_frame()) acked |= frame == i && i < given;
+        if (!acked) left.push_back(to_send[i]);
+      }
+      to_send = left;
+      given = 0;
+    };
     callbacks.on_data_request = [this](ModemTransmission* tx) {
       asked.push_back(*tx);
       for (uint32_t i = 0; i < tx->max_num_frames() && i < to_send.size(); ++i) tx->add_frame(to_send[i]);
+      given = static_cast<size_t>(tx->frame_size());
     };
     callbacks.on_transmit_result = [this](const ModemTransmission& tx, bool ok, const std::string& error) {
       results.push_back({tx, ok, error});
@@ -72,7 +85,8 @@ struct Node {
   v1::DriverConfig config;
   std::string written;
   std::unique_ptr<MicroModemDriver> driver;
-  std::vector<std::string> to_send;  // what the "queue" gives a data request
+  std::vector<std::string> to_send;  // the "queue": given to data requests, cleared by ACKs
+  size_t given = 0;                  // frames of to_send in the last data request
   std::vector<ModemTransmission> asked;
   std::vector<ModemTransmission> received;
   std::vector<Result> results;
@@ -158,6 +172,8 @@ TEST_F(MicroModemFdpDataTest, QueuedFramesGoOutAsFdpAndTheSoftwareAckComesBack) 
   ASSERT_EQ(acks[0].acked_frame_size(), 2);
   EXPECT_EQ(acks[0].acked_frame(0), 0u);
   EXPECT_EQ(acks[0].acked_frame(1), 1u);
+  // The sender's queue lost what the ACK named, and kept what did not fit.
+  EXPECT_EQ(a_->to_send, std::vector<std::string>{"a third the packet cannot hold"});
 }
 
 TEST_F(MicroModemFdpDataTest, ARateFdpDoesNotHaveIsRefusedBeforeTheQueuesAreAsked) {
