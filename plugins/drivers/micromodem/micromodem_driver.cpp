@@ -213,6 +213,13 @@ std::string MicroModemDriver::send_fdp(const ModemTransmission& tx, bool report)
            ": it is a Micro-Modem 1 (driver.micromodem.mm1_modems), which cannot decode the flexible data protocol";
   }
   if (!ready_) return "the modem is not ready (start-up in progress)";
+  if (tx.type() == ModemTransmission::ACK) {
+    // The command queue serializes it behind a keep-alive; the sequence
+    // does not log an ACK's failure, so it is logged here.
+    std::string why = fdp_.send(tx, false);
+    if (!why.empty()) spdlog::warn("{}: FDP acknowledgement to {} not sent: {}", label_, tx.dest(), why);
+    return why;
+  }
   if (!commands_.idle()) return "busy: a command to the modem is waiting for its reply";
   if (!extras_.idle()) return "busy: a driver-specific exchange (ping, LBL, ...) is in progress";
   return fdp_.send(tx, report);
