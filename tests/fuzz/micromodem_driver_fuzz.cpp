@@ -11,6 +11,8 @@
 //   !p<s><r>   the MAC polls node s % 4 at rate r % 6
 //   !b         the modem reboots ($CAREV INIT) mid-run
 //   !mm1       (first line only) the modem is an MM1, else an MM2
+//   !fdp       (first line only) driver.micromodem.fdp_data: DATA and
+//              software ACKs as FDP packets, $CARDP decoded as such
 // Any other line goes to the driver byte for byte with its '\n', so framing
 // (CR, LF, noise, '$' inside a line, over-long lines) is fuzzed as well.
 //
@@ -52,7 +54,7 @@ constexpr int kOwnId = 1;
 constexpr auto kMostSimulatedTime = 600s;  // bounds one input's cost
 
 struct Harness {
-  explicit Harness(Generation generation)
+  explicit Harness(Generation generation, bool fdp_data = false)
       : scheduler(acomms::core::Clock::time_point(std::chrono::seconds(1'700'000'000))),
         water(scheduler, {1500, 0, 1}),
         modem(water, modem_config(kOwnId, generation, 0)),
@@ -61,6 +63,10 @@ struct Harness {
     config.set_name("micromodem");
     config.set_modem_id(kOwnId);
     config.mutable_micromodem()->set_max_range_m(2000);
+    if (fdp_data) {
+      config.mutable_micromodem()->set_fdp_data(true);
+      config.mutable_micromodem()->add_cfg("psk.packet.mod_hdr_version,1");
+    }
     driver = std::make_unique<MicroModemDriver>(config, scheduler,
                                                 std::make_unique<FakeModemPort>(modem, scheduler, &written));
     acomms::link::DriverCallbacks callbacks;
@@ -149,7 +155,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* bytes, size_t size) {
   std::string_view input(reinterpret_cast<const char*>(bytes), size);
   bool mm1 = input.starts_with("!mm1");
-  Harness h(mm1 ? Generation::kMM1 : Generation::kMM2);
+  Harness h(mm1 ? Generation::kMM1 : Generation::kMM2, input.starts_with("!fdp"));
   auto limit = h.scheduler.clock().now() + kMostSimulatedTime;
 
   size_t start = 0;

@@ -84,7 +84,7 @@ std::string MicroModemNetwork::daemon_log(int id) const {
   return found == daemons_.end() ? "" : found->second->stderr_text();
 }
 
-void MicroModemNetwork::write_config(int id, const std::string& mac) {
+void MicroModemNetwork::write_config(int id, const std::string& mac, const std::string& micromodem) {
   std::ofstream config(dir_ / (node_name(id) + ".conf"));
   config << "data_dir: \"" << (dir_ / node_name(id)).string() << "\"\n"
          << "grpc { unix_socket: \"" << socket(id) << "\" }\n"
@@ -92,7 +92,7 @@ void MicroModemNetwork::write_config(int id, const std::string& mac) {
          // Restarts within seconds, not the default 20: tests unplug ports.
          << "driver { name: \"micromodem\" modem_id: " << id << " restart_min_s: 0.5 restart_max_s: 2"
          << " micromodem { port: \"tcp:" << address_[id]
-         << "\" time_scale: " << time_scale_ << " max_range_m: 1000 } }\n"
+         << "\" time_scale: " << time_scale_ << " max_range_m: 1000 " << micromodem << " } }\n"
          << "mac { " << mac << " }\n"
          << "queue {\n"
          << "  type { type: \"example.Command\" policy { value_base: 5 }\n"

@@ -39,8 +39,9 @@ class MicroModemNetwork {
   const std::filesystem::path& dir() const { return dir_; }
 
   // Writes node `id`'s config: its modem on the fake's port, example
-  // messages (example.Command queued with roles), `mac` inside mac { }.
-  void write_config(int id, const std::string& mac);
+  // messages (example.Command queued with roles), `mac` inside mac { },
+  // `micromodem` appended to its driver's micromodem { } settings.
+  void write_config(int id, const std::string& mac, const std::string& micromodem = "");
   // Starts node `id`'s daemon and waits until it serves (false if not).
   bool start(int id);
   ChildProcess& daemon(int id) { return *daemons_.at(id); }

@@ -79,5 +79,33 @@ TEST_P(MicroModemTwoNode, ACommandReachesTheVehicleWithLinkFiguresAndTheModemsAc
 INSTANTIATE_TEST_SUITE_P(Rates, MicroModemTwoNode, ::testing::Values(0, 5),
                          [](const ::testing::TestParamInfo<int>& info) { return "Rate" + std::to_string(info.param); });
 
+// driver.micromodem.fdp_data: the same Command as one MM2 FDP packet, and
+// the receiving daemon's software ACK (an FDP packet too) clears the
+// topside's queue; no $CCCYC goes out.
+TEST(MicroModemFdpData, ACommandGoesAsFdpAndTheSoftwareAckClearsTheQueue) {
+  MicroModemNetwork net("mm-fdp-data", {{1, "1,mm2,300,0,0"}, {2, "2,mm2,0,0,0"}}, kTimeScale);
+  ASSERT_TRUE(net.ok()) << net.fake_output();
+  std::string mac = "name: \"fixed\" slot { src: 1 rate: 5 seconds: 4 } slot { src: 2 rate: 5 seconds: 4 }";
+  for (int id : {1, 2}) net.write_config(id, mac, "cfg: \"psk.packet.mod_hdr_version,1\" fdp_data: true");
+  for (int id : {1, 2}) ASSERT_TRUE(net.start(id)) << net.daemon_log(id);
+  StreamSubscriber vehicle(net.socket(1), "example.Command");
+  grpc::Status submitted = net.submit_command(2, 1, 7);
+  ASSERT_TRUE(submitted.ok()) << submitted.error_message();
+
+  bool heard = vehicle.wait_for([](const auto& received) { return !received.empty(); }, 60s);
+  bool cleared = heard && wait_until([&] { return net.queued(2) == 0; }, 30s, 200ms);
+  ASSERT_TRUE(heard) << "vehicle:\n" << net.daemon_log(1) << "\ntopside:\n" << net.daemon_log(2);
+  EXPECT_EQ(vehicle.received().front().src(), 2);
+  EXPECT_TRUE(cleared) << "the software ACK did not clear the topside's queue:\n" << net.daemon_log(2);
+  RunResult raw = net.raw_log(2);
+  EXPECT_EQ(raw.exit_code, 0) << raw.err;
+  EXPECT_NE(raw.out.find(" >> $CCTDP,1,5,0,0,DD01"), std::string::npos) << raw.out.substr(0, 3000);
+  EXPECT_EQ(raw.out.find("$CCCYC"), std::string::npos);
+  for (int id : {1, 2}) {
+    net.daemon(id).signal(SIGTERM);
+    EXPECT_EQ(net.daemon(id).wait(15s), std::optional<int>(0)) << "node " << id << ":\n" << net.daemon_log(id);
+  }
+}
+
 }  // namespace
 }  // namespace acomms::testing

@@ -39,16 +39,6 @@ DriverSpecificResult invalid(const ModemTransmission& r, std::string why) {
 
 bool is_address(int64_t id) { return id >= 0 && id <= nmea::kMaxAddress; }
 
-// Air time of an FDP packet (§3.2): mini section plus a full data section
-// at the rate (an upper bound: FDP air time follows the bytes sent).
-double fdp_air_s(int rate) {
-  switch (rate) {
-    case 1: return 1.574 + 3.072;
-    case 3: return 0.755 + 3.072;
-    default: return 0.286 + 3.000;
-  }
-}
-
 constexpr double kMiniAir = 0.7;     // §3.1: 0.5-0.7 s
 constexpr double kTurnaround = 0.5;  // §9: ~0.5-1 s
 constexpr double kSlack = 2;         // serial time and decoding (as the data cycle's margin)
@@ -219,7 +209,7 @@ void DriverSpecificExchange::send(const ModemTransmission& request, double deadl
       int rate = static_cast<int>(current_->ask.fdp_rate());
       return send_command(nmea::to_sentence(nmea::FdpTransmit{dest, rate, false, data}),
                           [](const Sentence& s) { return s.is("CATDP"); }, Phase::kAwaitTransmitted,
-                          seconds(fdp_air_s(rate) + kSlack));
+                          seconds(nmea::fdp_packet_air_s(rate) + kSlack));
     }
     default:
       return finish(DriverSpecificStatus::kInvalidArgument, "micromodem.kind is not known");
@@ -395,7 +385,7 @@ bool DriverSpecificExchange::on_transmit_finished() {
     int rate = static_cast<int>(current_->ask.fdp_rate());
     double travel = settings_.max_range_m / settings_.sound_speed;
     // The ACK: turnaround, its echo, its packet (a short FDP one), travel both ways.
-    wait(Phase::kAwaitAck, seconds(2 * travel + kTurnaround + fdp_air_s(rate) + kSlack), "$CCTDP");
+    wait(Phase::kAwaitAck, seconds(2 * travel + kTurnaround + nmea::fdp_packet_air_s(rate) + kSlack), "$CCTDP");
     return true;
   }
   succeed();

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "core/core_thread.h"
@@ -81,7 +82,7 @@ MicroModemDriver::MicroModemDriver(const v1::DriverConfig& config, core::Schedul
       user_cfg_(user_cfg_of(config)),
       time_scale_(scale_of(config)),
       max_range_m_(cycle_timeouts(config).max_range_m),
-      sequence_({label_, id_, 0, 0, /*software_acks=*/false},
+      sequence_({label_, id_, 0, 0, /*software_acks=*/config.micromodem().fdp_data()},
                 {[this](const ModemTransmission& tx, bool report) { return send(tx, report); }}),
       bad_input_(label_),
       commands_(scheduler, [this](const Sentence& s) { write(s); },
@@ -100,7 +101,20 @@ MicroModemDriver::MicroModemDriver(const v1::DriverConfig& config, core::Schedul
                [this](const ModemTransmission& rx) {
                  if (sequence_.running() && sequence_.callbacks().on_receive) sequence_.callbacks().on_receive(rx);
                },
-               [this] { return now_seconds(); }}) {
+               [this] { return now_seconds(); }}),
+      fdp_data_(config.micromodem().fdp_data()),
+      mm1_modems_(extra_settings(config, id_).mm1_modems),
+      fdp_(scheduler, commands_, id_, time_scale_,
+           {[this](const ModemTransmission& tx, bool ok, const std::string& error) {
+              if (sequence_.running()) sequence_.report(tx, ok, error);
+            },
+            [this](const ModemTransmission& rx) { sequence_.on_received(rx); },
+            [this] { return now_seconds(); }}) {
+  if (fdp_data_ && !extra_settings(config, id_).fdp_configured) {
+    throw std::invalid_argument(
+        "driver.micromodem.fdp_data needs cfg: \"psk.packet.mod_hdr_version,1\" (FDP packets; on every modem of "
+        "the network)");
+  }
   if (id_ > nmea::kMaxAddress) {
     throw std::invalid_argument("driver.modem_id " + std::to_string(id_) + " is not a Micro-Modem address (1..127)");
   }
@@ -135,6 +149,7 @@ void MicroModemDriver::stop() {
   // Failures of what was in flight still reach the sequence's owner.
   cycle_.abort("the driver stopped");
   extras_.abort("the driver stopped");
+  fdp_.abort("the driver stopped");
   commands_.clear("the driver stopped");
   acks_.reset();
   reception_.reset();
@@ -156,7 +171,7 @@ void MicroModemDriver::do_work() {
 }
 
 void MicroModemDriver::keep_alive() {
-  if (!ready_ || !cycle_.idle() || !commands_.idle() || !extras_.idle()) return;
+  if (!ready_ || !cycle_.idle() || !commands_.idle() || !extras_.idle() || !fdp_.idle()) return;
   if (scheduler_.clock().now() - last_line_ < scaled(kKeepAlive)) return;
   last_line_ = scheduler_.clock().now();  // one probe per quiet period
   commands_.push({to_sentence(nmea::ConfigQuery{"SRC"}),
@@ -172,10 +187,46 @@ void MicroModemDriver::keep_alive() {
 
 void MicroModemDriver::initiate_transmission(const ModemTransmission& transmission) {
   ACOMMS_ASSERT_CORE_THREAD();
+  if (fdp_data_ && transmission.type() == ModemTransmission::DATA && transmission.src() == id_) {
+    // Our DATA as FDP: as many of the rate's frames as one packet holds.
+    sequence_.check_running();
+    uint32_t frames = FdpDataLink::max_num_frames(transmission.rate());
+    if (frames == 0) {
+      return sequence_.report(transmission, false,
+                              "driver.micromodem.fdp_data: rate " + std::to_string(transmission.rate()) +
+                                  " is not an FDP rate (1, 3 or 5)");
+    }
+    ModemTransmission fdp = transmission;
+    if (fdp.max_num_frames() == 0 || fdp.max_num_frames() > frames) fdp.set_max_num_frames(frames);
+    return sequence_.transmit(fdp);
+  }
   sequence_.transmit(transmission);
 }
 
-std::string MicroModemDriver::send(const ModemTransmission& tx, bool) {
+std::string MicroModemDriver::send_fdp(const ModemTransmission& tx, bool report) {
+  if (tx.type() != ModemTransmission::ACK && !(tx.type() == ModemTransmission::DATA && tx.src() == id_)) {
+    return "driver.micromodem.fdp_data: only this node's DATA and ACKs go out as FDP (asked for type " +
+           std::to_string(tx.type()) + " from " + std::to_string(tx.src()) + ")";
+  }
+  if (std::find(mm1_modems_.begin(), mm1_modems_.end(), tx.dest()) != mm1_modems_.end()) {
+    return "cannot send FDP data to modem " + std::to_string(tx.dest()) +
+           ": it is a Micro-Modem 1 (driver.micromodem.mm1_modems), which cannot decode the flexible data protocol";
+  }
+  if (!ready_) return "the modem is not ready (start-up in progress)";
+  if (tx.type() == ModemTransmission::ACK) {
+    // The command queue serializes it behind a keep-alive; the sequence
+    // does not log an ACK's failure, so it is logged here.
+    std::string why = fdp_.send(tx, false);
+    if (!why.empty()) spdlog::warn("{}: FDP acknowledgement to {} not sent: {}", label_, tx.dest(), why);
+    return why;
+  }
+  if (!commands_.idle()) return "busy: a command to the modem is waiting for its reply";
+  if (!extras_.idle()) return "busy: a driver-specific exchange (ping, LBL, ...) is in progress";
+  return fdp_.send(tx, report);
+}
+
+std::string MicroModemDriver::send(const ModemTransmission& tx, bool report) {
+  if (fdp_data_) return send_fdp(tx, report);
   if (tx.type() != ModemTransmission::DATA) {
     return "the micromodem driver sends DATA and polls only (asked for type " + std::to_string(tx.type()) + ")";
   }
@@ -225,8 +276,9 @@ void MicroModemDriver::on_startup_done(const std::string& error) {
     spdlog::error("{}: {}", label_, error);
     return;
   }
-  ready_ = true;
   if (startup_->generation()) generation_ = startup_->generation();
+  if (refuse_fdp_on_mm1()) return;
+  ready_ = true;
   if (!startup_->revision().empty()) revision_ = startup_->revision();
   std::string kind = modem().empty() ? "Micro-Modem (revision not seen yet)" : modem();
   spdlog::info("{}: {} ready on {} (SRC {})", label_, kind, port_->name(), id_);
@@ -245,6 +297,7 @@ void MicroModemDriver::on_reboot() {
   commands_.clear("the modem rebooted");
   cycle_.abort("the modem rebooted ($CAREV INIT) during the exchange");
   extras_.abort("the modem rebooted ($CAREV INIT) during the exchange");
+  fdp_.abort("the modem rebooted ($CAREV INIT) during the FDP packet");
   acks_.reset();
   reception_.reset();
   begin_startup();  // listens for the AUV line first: the modem is booting (§4.1)
@@ -380,8 +433,20 @@ void MicroModemDriver::on_revision(const Sentence& s) {
     auto generation = nmea::modem_generation(revision->revision);
     if (generation) generation_ = *generation;
     revision_ = revision->revision;
+    // Before the start-up writes the FDP header setting an MM1 would refuse.
+    if (refuse_fdp_on_mm1()) return;
   }
   if (startup_) startup_->on_revision(*revision);
+}
+
+bool MicroModemDriver::refuse_fdp_on_mm1() {
+  if (!fdp_data_ || generation_ != ModemGeneration::kMM1) return false;
+  startup_.reset();
+  commands_.clear("driver.micromodem.fdp_data on a Micro-Modem 1");
+  fatal_ = "driver.micromodem.fdp_data needs a Micro-Modem 2: this modem is " + modem() +
+           " (FDP, $CCTDP/$CARDP, is MM2 only)";
+  spdlog::error("{}: {}", label_, fatal_);
+  return true;
 }
 
 void MicroModemDriver::on_cycle(const Sentence& s) {

@@ -18,9 +18,12 @@
 //   driver_specific_exchange — ping, LBL, mini-packets, FDP (spec §6-§7);
 //                       its sentences are routed in micromodem_driver_specific.cpp
 //   poll_frames       — how many frames a poll asks for ($CCCYC Nframes)
+//   fdp_data_link     — with driver.micromodem.fdp_data (MM2): the DATA as
+//                       $CCTDP / $CARDP instead of the cycle
 // The DriverSequence (link/driver_sequence.h) makes the decisions every
 // driver shares (data request before the cycle, polls, what on_receive
-// sees); the modem acknowledges in hardware, so software_acks is off.
+// sees); the modem acknowledges in hardware, so software_acks is off,
+// except with fdp_data: FDP firmware ACKs are not to be relied on (§6).
 //
 // Failures the supervisor should restart the driver for (DriverError from
 // do_work): a start-up that fails (no answer, a refused setting — named),
@@ -45,6 +48,7 @@
 #include "micromodem/command_queue.h"
 #include "micromodem/data_cycle.h"
 #include "micromodem/driver_specific_exchange.h"
+#include "micromodem/fdp_data_link.h"
 #include "micromodem/modem_port.h"
 #include "micromodem/nmea/line_framer.h"
 #include "micromodem/reception.h"
@@ -106,9 +110,13 @@ class MicroModemDriver final : public link::Driver {
   void begin_startup();
   void on_startup_done(const std::string& error);
   void on_reboot();
+  // fdp_data on a modem known to be MM1: start-up fails naming it (true).
+  bool refuse_fdp_on_mm1();
   void keep_alive();
   // The DriverSequence's Medium::send: "" or why the modem cannot take it now.
   std::string send(const v1::ModemTransmission& transmission, bool report);
+  // send() with driver.micromodem.fdp_data: DATA and ACKs as FDP packets.
+  std::string send_fdp(const v1::ModemTransmission& transmission, bool report);
   double now_seconds() const;
   Duration scaled(Duration d) const;
   template <typename T>
@@ -130,6 +138,9 @@ class MicroModemDriver final : public link::Driver {
   Reception reception_;
   AckTracker acks_;
   DriverSpecificExchange extras_;
+  bool fdp_data_ = false;            // driver.micromodem.fdp_data
+  std::vector<int32_t> mm1_modems_;  // no FDP DATA towards these
+  FdpDataLink fdp_;
   std::unique_ptr<StartupSequence> startup_;
   bool ready_ = false;
   bool answering_poll_ = false;  // inside answer_poll(): send() starts a polled exchange

@@ -62,7 +62,8 @@ bool MicroModemDriver::dispatch_driver_specific(const Sentence& s) {
   }
   if (address == "CARDP") {
     auto r = nmea::parse_fdp_received(s);
-    if (parsed(r, s)) extras_.on_fdp_received(*r);
+    // With fdp_data, packets in its format are DATA and ACKs; others are extras.
+    if (parsed(r, s) && !(fdp_data_ && fdp_.on_received(*r))) extras_.on_fdp_received(*r);
     return true;
   }
   if (address == "CAMPA") {
@@ -71,6 +72,7 @@ bool MicroModemDriver::dispatch_driver_specific(const Sentence& s) {
     return true;
   }
   // The end of an extra's transmission; else the data cycle's.
+  if (address == "CATXF" && !fdp_.idle()) return fdp_.on_transmit_finished();
   if (address == "CATXF" && !extras_.idle()) return extras_.on_transmit_finished();
   return false;
 }

@@ -76,6 +76,14 @@ int fdp_max_data_bytes(int rate) {
   }
 }
 
+double fdp_packet_air_s(int rate) {
+  switch (rate) {
+    case 1: return 1.574 + 3.072;
+    case 3: return 0.755 + 3.072;
+    default: return 0.286 + 3.000;
+  }
+}
+
 Sentence to_sentence(const FdpTransmit& p) {
   return Sentence{"CC", "TDP",
                   {std::to_string(p.destination), std::to_string(p.rate), p.ack ? "1" : "0", "0", hex_encode(p.data)}};

@@ -16,6 +16,9 @@ namespace acomms::micromodem {
 // The FDP rates and their sizes (§3.2): the data section's most bytes.
 int fdp_max_data_bytes(int rate);  // 0 for a rate that is not 1, 3 or 5
 inline constexpr int kFdpMiniFrameBytes = 96;
+// Air time of an FDP packet at `rate` (§3.2): the mini section plus a full
+// data section (an upper bound: FDP air time follows the bytes sent), s.
+double fdp_packet_air_s(int rate);
 
 // $CCTDP,<dest>,<rate>,<ack>,<reserved 0>,<hex data>.
 struct FdpTransmit {
