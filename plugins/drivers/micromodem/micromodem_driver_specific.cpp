@@ -30,6 +30,9 @@ void MicroModemDriver::send_driver_specific(const v1::ModemTransmission& request
   // The slot is ours, but the modem may still be finishing an exchange
   // (an ACK awaited from the previous slot): one exchange at a time (§11).
   if (!cycle_.idle()) return busy("busy: the modem is in a data exchange");
+  // With fdp_data, the slot's DATA goes through fdp_, not cycle_: an extra
+  // sent meanwhile would take that packet's $CATXF as its own.
+  if (!fdp_.idle()) return busy("busy: the modem is sending FDP data");
   extras_.send(request, deadline_s, std::move(done));
 }
 
