@@ -6,9 +6,11 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "acomms/drivers/micromodem_transmission.pb.h"
 #include "fake_micromodem.h"
 #include "fake_modem_port.h"
 #include "link/driver.h"
@@ -174,6 +176,38 @@ TEST_F(MicroModemFdpDataTest, QueuedFramesGoOutAsFdpAndTheSoftwareAckComesBack) 
   EXPECT_EQ(acks[0].acked_frame(1), 1u);
   // The sender's queue lost what the ACK named, and kept what did not fit.
   EXPECT_EQ(a_->to_send, std::vector<std::string>{"a third the packet cannot hold"});
+}
+
+// An extra (here a ping) asked for while the slot's FDP DATA is on the air
+// is refused as busy: sent, it would take that packet's $CATXF as its own.
+TEST_F(MicroModemFdpDataTest, AnExtraWhileFdpDataIsOnTheAirIsRefusedAndTheDataStillGoesOut) {
+  two_mm2s();
+  a_->to_send = {"first frame", std::string(64, 'x')};
+  a_->driver->initiate_transmission(data(1));
+  // Step until $CCTDP is out: the packet is on the air until its $CATXF.
+  for (int step = 0; step < 50 && a_->written.find("$CCTDP") == std::string::npos; ++step) {
+    ASSERT_EQ(run(100ms), "");
+  }
+  ASSERT_NE(a_->written.find("$CCTDP"), std::string::npos) << a_->written;
+  ASSERT_TRUE(a_->results.empty()) << "the FDP packet finished before the extra was asked for";
+
+  ModemTransmission ping;
+  ping.set_type(ModemTransmission::DRIVER_SPECIFIC);
+  ping.set_src(1);
+  ping.set_dest(2);
+  ping.MutableExtension(drivers::micromodem_transmission)->set_kind(drivers::MicroModemTransmission::PING);
+  std::optional<link::DriverSpecificResult> result;
+  const double deadline = std::chrono::duration<double>(scheduler_.clock().now().time_since_epoch()).count() + 30;
+  a_->driver->send_driver_specific(ping, deadline, [&](link::DriverSpecificResult r) { result = std::move(r); });
+  ASSERT_TRUE(result.has_value());
+  EXPECT_EQ(result->status, link::DriverSpecificStatus::kAborted);
+  EXPECT_NE(result->error.find("FDP data"), std::string::npos) << result->error;
+
+  ASSERT_EQ(run(20s), "");
+  ASSERT_EQ(a_->results.size(), 1u);
+  EXPECT_TRUE(a_->results[0].ok) << a_->results[0].error;
+  EXPECT_TRUE(a_->to_send.empty());  // acknowledged
+  EXPECT_EQ(a_->written.find("$CCMPC"), std::string::npos) << a_->written;
 }
 
 TEST_F(MicroModemFdpDataTest, ARateFdpDoesNotHaveIsRefusedBeforeTheQueuesAreAsked) {
