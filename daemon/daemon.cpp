@@ -7,6 +7,7 @@
 
 #include "core/systemd_notify.h"
 #include "mac/mac_factory.h"
+#include "queue/durable_receipts.h"
 #include "message_definitions.h"
 #include "service/position_message.h"
 #include "service/received_message.h"
@@ -181,6 +182,10 @@ void Daemon::build_link() {
       [this] {
         link::LinkOptions options = link::LinkOptions::from_config(config_.mac(), scheduler_->clock());
         options.scheduler = scheduler_.get();  // deadlines of driver-specific requests
+        // Daemon::stop flushes the writer after the link has stopped, so no
+        // commit callback outlives the core.
+        options.after_receipt_durable =
+            queue::durable_receipts(*journal_, [this](queue::Task task) { core_->post(std::move(task)); });
         return options;
       }());
   // A serial modem's sentences, kept for debugging (link/raw_log.h). The

@@ -50,6 +50,12 @@ struct DriverCallbacks {
   std::function<void(const v1::ModemTransmission&, bool ok, const std::string& error)> on_transmit_result;
   // Raw bytes to and from the device, for logs and debugging.
   std::function<void(std::string_view bytes, bool outgoing)> on_raw;
+  // Runs `then` on the core thread once everything on_receive has passed on
+  // so far is durable (its received events committed to the store), or
+  // never if that commit fails. A software ACK waits for it: an ACK tells
+  // the sender to forget the message, so it must not go out while a crash
+  // could still lose the only copy. Unset: at once (no store).
+  std::function<void(std::function<void()> then)> after_receipt_durable;
 };
 
 // A failure of the driver or its device (port gone, peer unreachable). The

@@ -91,8 +91,24 @@ void DriverSequence::on_received(const ModemTransmission& received, const Heard&
   }
   if (should_report(received, own_id) && callbacks_.on_receive) callbacks_.on_receive(received);
   // on_receive may have stopped the driver: then nothing more goes out.
-  if (options_.software_acks && running_ && wants_ack(received, own_id)) {
-    answer([this, ack = make_ack(received, own_id)] { medium_.send(ack, /*report=*/false); });
+  if (!options_.software_acks || !running_ || !wants_ack(received, own_id)) return;
+  // Only once what on_receive passed on is durable (DriverCallbacks), and
+  // only if this sequence still runs then: the driver may have been stopped
+  // or destroyed while the store committed.
+  auto acknowledge = [this, alive = std::weak_ptr<const char>(alive_), ack = make_ack(received, own_id),
+                      when_free = heard.answer_when_free] {
+    if (alive.expired() || !running_) return;
+    auto send = [this, ack] { medium_.send(ack, /*report=*/false); };
+    if (when_free) {
+      when_free(std::move(send));
+    } else {
+      send();
+    }
+  };
+  if (callbacks_.after_receipt_durable) {
+    callbacks_.after_receipt_durable(std::move(acknowledge));
+  } else {
+    acknowledge();
   }
 }
 

@@ -23,7 +23,10 @@
 // modems that acknowledge in hardware. The Micro-Modem is such a modem: its
 // Medium::send starts the cycle ($CCCYC) with the frames the sequence got
 // from the queues and hands them out as the modem asks for each ($CADRQ),
-// and the modem's own ACKs come back through on_received.
+// and the modem's own ACKs come back through on_received. A hardware ACK
+// goes out when the modem decides, before the store has committed what it
+// acknowledges; only software ACKs wait for that (README, "Acknowledgements
+// and crashes").
 //
 // Invariants: nothing reaches a callback before start() or after stop(); a
 // transmission the MAC started is answered by on_transmit_result exactly
@@ -32,6 +35,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -98,7 +102,8 @@ class DriverSequence {
 
   // A packet heard from the medium (parsed, time set): polls for us are
   // answered, what the queues should see goes to on_receive, and DATA to us
-  // with ack_requested is acknowledged (software_acks).
+  // with ack_requested is acknowledged (software_acks) once what it carried
+  // is durable (DriverCallbacks::after_receipt_durable).
   void on_received(const v1::ModemTransmission& received, const Heard& heard = {});
 
   // Reports a transmission's result to on_transmit_result (failures logged).
@@ -111,6 +116,9 @@ class DriverSequence {
   Medium medium_;
   DriverCallbacks callbacks_;
   bool running_ = false;
+  // Expires with the sequence: an ACK waiting for the store checks it
+  // before touching the sequence (or its driver) again.
+  std::shared_ptr<const char> alive_ = std::make_shared<const char>(0);
 };
 
 }  // namespace acomms::link

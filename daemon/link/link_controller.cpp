@@ -60,6 +60,7 @@ void LinkController::start() {
       spdlog::trace("link {} {} bytes", outgoing ? ">>" : "<<", bytes.size());
     }
   };
+  callbacks.after_receipt_durable = options_.after_receipt_durable;
   driver_.start(std::move(callbacks));
   mac_.start([this](const v1::ModemTransmission& t) {
     // The driver's data request, if any, comes within this call.

@@ -51,6 +51,9 @@ struct LinkOptions {
   // Runs the deadlines of driver-specific requests waiting for a slot
   // (null: checked when the slot comes).
   core::Scheduler* scheduler = nullptr;
+  // Given to the driver (DriverCallbacks::after_receipt_durable): software
+  // ACKs wait until the queues' received events are committed. Null: at once.
+  std::function<void(std::function<void()> then)> after_receipt_durable;
 
   // From the config (mac.max_range_m, unset: kDefaultMaxRangeM) and the
   // core's clock.

@@ -1,8 +1,10 @@
 // The process queue_crash_test kills: submits from several threads as fast
-// as it can, through the same path as the daemon's Submit, and reports on
-// stdout only what has been confirmed. See queue_crash_protocol.h.
+// as it can, through the same path as the daemon's Submit, or receives as
+// fast as it can, acknowledging the way the link does; it reports on stdout
+// only what has been confirmed. See queue_crash_protocol.h.
 //
 //   queue_crash_child <data dir> <threads> <proto file>
+//   queue_crash_child <data dir> receive <proto file>
 
 #include <google/protobuf/text_format.h>
 #include <spdlog/sinks/stdout_sinks.h>
@@ -19,6 +21,7 @@
 
 #include "core/clock.h"
 #include "core/event_loop.h"
+#include "queue/durable_receipts.h"
 #include "queue/queue_manager.h"
 #include "queue/sqlite_journal.h"
 #include "queue/submitter.h"
@@ -70,6 +73,29 @@ void submit_forever(const dccl::Codec& codec, queue::QueueManager& queues, queue
   }
 }
 
+// Receive mode: crash.Test{thread: 0, seq: 0, 1, ...} arrives from node 2
+// through QueueManager::receive, one message a core-thread turn, and each
+// asks for its ACK exactly as the link's software ACKs do
+// (queue::durable_receipts, the daemon's hook); "acked <seq>" is printed
+// when that ACK would go on the air.
+void receive_forever(const dccl::Codec& codec, queue::QueueManager& queues, core::EventLoop& core,
+                     queue::SqliteJournal& journal) {
+  queue::AfterReceiptsDurable after_durable =
+      queue::durable_receipts(journal, [&core](queue::Task task) { core.post(std::move(task)); });
+  auto message = codec.new_message(crash::kType);
+  const auto* type = message->GetDescriptor();
+  const auto* reflection = message->GetReflection();
+  reflection->SetString(message.get(), type->FindFieldByName("filler"), "received");
+  std::function<void(int64_t)> receive = [&](int64_t seq) {
+    reflection->SetInt64(message.get(), type->FindFieldByName("seq"), seq);
+    if (queues.receive(codec.encode(*message), 2).size() != 1) std::_Exit(6);
+    after_durable([seq] { say("acked " + std::to_string(seq)); });
+    core.post([&receive, seq] { receive(seq + 1); });
+  };
+  core.call([&] { receive(0); });
+  for (;;) ::pause();  // until killed
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -83,7 +109,8 @@ int main(int argc, char** argv) {
   spdlog::set_default_logger(spdlog::stderr_logger_mt("queue_crash_child"));
   spdlog::set_level(spdlog::level::err);
   std::string dir = argv[1];
-  int threads = std::atoi(argv[2]);
+  const bool receiving = std::string(argv[2]) == "receive";
+  int threads = receiving ? 0 : std::atoi(argv[2]);
 
   store::Store store(dir);
   store::GroupCommitWriter writer(store.db());
@@ -99,6 +126,7 @@ int main(int argc, char** argv) {
   queue::Submitter submitter(queues, [&core](std::function<void()> work) { core.post(std::move(work)); });
   core.start();
   say("ready");
+  if (receiving) receive_forever(codec, queues, core, journal);
   std::vector<std::thread> submitters;
   for (int t = 0; t < threads; ++t) {
     submitters.emplace_back([&, t] { submit_forever(codec, queues, submitter, core, journal, t); });

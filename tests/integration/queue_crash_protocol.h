@@ -13,6 +13,11 @@
 //   ok <id> <thread> <seq>   the submit of (thread, seq) returned id
 //   removed <id>             a cancel of <id> was recorded and flushed
 // Messages with seq % kRemoveEvery == 0 are cancelled right after their ok line.
+//
+// With "receive" for <threads>, the child instead receives
+// crash.Test{thread: 0, seq: 0, 1, ...} from node 2 and prints
+//   acked <seq>              the ACK for it would go out now
+// at the moment the link would send that message's software ACK.
 
 namespace acomms::testing::queue_crash {
 

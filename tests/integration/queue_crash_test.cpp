@@ -213,5 +213,55 @@ TEST_F(QueueCrashTest, RestoredQueueHoldsEveryConfirmedSubmit) {
   EXPECT_GE(iterations_with_appends, kIterations / 2);
 }
 
+// An ACK makes the sender forget its message: whatever the receiver
+// acknowledged must be in its event log after a SIGKILL at any moment
+// (queue/durable_receipts.h), or it is lost on both sides.
+TEST_F(QueueCrashTest, EveryAcknowledgedReceiptSurvivesTheKill) {
+  std::mt19937 rng(kSeed + 1);
+  std::uniform_int_distribution<int> kill_after_ms(10, 300);
+  size_t total_acked = 0;
+  int runs_with_acks = 0;
+  for (int run = 0; run < kIterations / 2; ++run) {
+    std::string dir = (root_ / ("receive" + std::to_string(run))).string();
+    int delay = kill_after_ms(rng);
+    SCOPED_TRACE("run " + std::to_string(run) + ", killed after " + std::to_string(delay) + " ms, data dir " + dir);
+    std::set<int64_t> acked;
+    {
+      acomms::testing::ChildProcess child(QUEUE_CRASH_CHILD, {dir, "receive", proto_}, dir + ".child");
+      std::this_thread::sleep_for(std::chrono::milliseconds(delay));
+      child.signal(SIGKILL);
+      child.wait(std::chrono::seconds(10));
+      ASSERT_EQ(child.exit_signal(), SIGKILL) << "child stderr:\n" << child.stderr_text();
+      std::istringstream lines(child.stdout_text());
+      std::string line;
+      while (std::getline(lines, line)) {
+        if (lines.eof()) break;  // cut by the kill: not confirmed
+        std::istringstream words(line);
+        std::string what;
+        int64_t seq = -1;
+        words >> what >> seq;
+        if (what == "acked") acked.insert(seq);
+      }
+    }
+    if (!acked.empty()) ++runs_with_acks;
+    total_acked += acked.size();
+
+    store::Store store(dir);
+    store::GroupCommitWriter writer(store.db());
+    SqliteJournal journal(writer);
+    dccl::Codec codec;
+    codec.load(proto_);
+    std::set<int64_t> stored;
+    for (const QueueEvent& event : journal.received_since(0)) {
+      size_t used = 0;
+      auto message = codec.decode_as(crash::kType, event.encoded, &used);
+      stored.insert(message->GetReflection()->GetInt64(*message, message->GetDescriptor()->FindFieldByName("seq")));
+    }
+    for (int64_t seq : acked) EXPECT_TRUE(stored.count(seq)) << "message " << seq << " acknowledged, then lost";
+  }
+  std::printf("receive crash: %d runs, %d with ACKs, %zu ACKs in all\n", kIterations / 2, runs_with_acks, total_acked);
+  EXPECT_GE(runs_with_acks, kIterations / 4);
+}
+
 }  // namespace
 }  // namespace acomms::queue

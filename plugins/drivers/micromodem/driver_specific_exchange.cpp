@@ -300,14 +300,16 @@ void DriverSpecificExchange::wait(Phase phase, Duration modem_time, std::string 
     const char* awaited = phase == Phase::kAwaitReply       ? "answer"
                           : phase == Phase::kAwaitTransmitted ? "$CATXF (transmission finished)"
                                                               : "FDP acknowledgement from the destination";
+    if (phase == Phase::kAwaitAck) {
+      // Sent, but not acknowledged (in time for the call, or at all): the
+      // packet is in the water, so the call succeeded and says so
+      // (fdp_acknowledged false); a deadline error would invite a resend.
+      current_->ask.set_fdp_acknowledged(false);
+      return succeed();
+    }
     if (deadline_first) {
       return finish(DriverSpecificStatus::kDeadlineExceeded,
                     std::string("the call's deadline passed while ") + what + " waited for " + awaited);
-    }
-    if (phase == Phase::kAwaitAck) {
-      // Sent, but not acknowledged: the result says so (fdp_acknowledged false).
-      current_->ask.set_fdp_acknowledged(false);
-      return succeed();
     }
     char text[64];
     std::snprintf(text, sizeof text, "%.1f", own_s);

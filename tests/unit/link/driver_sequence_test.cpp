@@ -210,6 +210,56 @@ TEST_F(DriverSequenceTest, DataToUsWithAckRequestedIsAcknowledgedInSoftware) {
   EXPECT_FALSE(sent_[0].report) << "nobody waits for an ACK's result";
 }
 
+// The ACK promises the message is safe: it waits until what on_receive
+// passed on is durable, then still waits for the medium.
+TEST_F(DriverSequenceTest, SoftwareAckWaitsUntilTheReceiptIsDurable) {
+  DriverSequence sequence = make();
+  DriverCallbacks c = callbacks();
+  std::vector<std::function<void()>> durable;
+  c.after_receipt_durable = [&](std::function<void()> then) {
+    EXPECT_EQ(received_.size(), 1u) << "asked for only after the packet went to on_receive";
+    durable.push_back(std::move(then));
+  };
+  sequence.start(c);
+  std::vector<std::function<void()>> waiting;
+  DriverSequence::Heard heard{2, [&](std::function<void()> answer) { waiting.push_back(std::move(answer)); }};
+  sequence.on_received(data(2, kOwnId, 2, /*ack_requested=*/true), heard);
+  ASSERT_EQ(durable.size(), 1u);
+  EXPECT_TRUE(waiting.empty()) << "not even queued for the medium before the commit";
+  EXPECT_TRUE(sent_.empty());
+  durable[0]();
+  EXPECT_TRUE(sent_.empty()) << "then it waits for the medium";
+  ASSERT_EQ(waiting.size(), 1u);
+  waiting[0]();
+  ASSERT_EQ(sent_.size(), 1u);
+  EXPECT_EQ(sent_[0].transmission.type(), ModemTransmission::ACK);
+  EXPECT_EQ(sent_[0].transmission.dest(), 2);
+  EXPECT_EQ(sent_[0].transmission.acked_frame_size(), 2);
+  // Nothing to acknowledge, nothing to wait for.
+  sequence.on_received(data(2, kOwnId, 1, /*ack_requested=*/false), heard);
+  EXPECT_EQ(durable.size(), 1u);
+}
+
+TEST_F(DriverSequenceTest, NoAckWhenTheCommitEndsAfterTheDriverStoppedOrWentAway) {
+  std::vector<std::function<void()>> durable;
+  DriverCallbacks c = callbacks();
+  c.after_receipt_durable = [&](std::function<void()> then) { durable.push_back(std::move(then)); };
+  {
+    DriverSequence sequence = make();
+    sequence.start(c);
+    sequence.on_received(data(2, kOwnId, 1, true));
+    sequence.stop();
+    ASSERT_EQ(durable.size(), 1u);
+    durable[0]();
+    EXPECT_TRUE(sent_.empty()) << "stopped: nothing more goes out";
+    sequence.start(c);
+    sequence.on_received(data(2, kOwnId, 1, true));
+    ASSERT_EQ(durable.size(), 2u);
+  }
+  durable[1]();  // the sequence (and its driver) are gone
+  EXPECT_TRUE(sent_.empty());
+}
+
 TEST_F(DriverSequenceTest, NoAckForBroadcastForOthersOrWithoutAckRequested) {
   DriverSequence sequence = make();
   sequence.start(callbacks());

@@ -118,6 +118,13 @@ class LinkControllerTest : public ::testing::Test {
     return result.message_id;
   }
 
+  LinkOptions options_for(double max_range_m) const {
+    LinkOptions options;
+    options.clock = &clock_;
+    options.max_range_m = max_range_m;
+    return options;
+  }
+
   fs::path dir_;
   dccl::Codec codec_;
   core::SimulatedClock clock_{core::Clock::time_point(std::chrono::seconds(1'700'000'000))};
@@ -196,6 +203,26 @@ TEST_F(LinkControllerTest, ReceivedFramesAreSplitAndDeliveredWhenForUs) {
 // The fake driver's timing is driver.h's default (rate table + 10 %): at
 // rate 5 with an ACK and the 2000 m guard, one frame needs 4.74 s of the
 // slot, two 5.17 s.
+// The store's commit hook reaches the driver, which holds software ACKs
+// on it (link/driver_sequence.h).
+TEST_F(LinkControllerTest, TheDriverGetsTheHookThatSaysWhenReceiptsAreDurable) {
+  EXPECT_FALSE(driver_.callbacks_.after_receipt_durable) << "no hook given: the driver acknowledges at once";
+  LinkOptions options = options_for(kDefaultMaxRangeM);
+  int asked = 0;
+  options.after_receipt_durable = [&asked](std::function<void()> then) {
+    ++asked;
+    then();
+  };
+  link_ = std::make_unique<LinkController>(
+      1, *queues_, mac_, driver_, [](queue::ReceivedMessage, const v1::ModemTransmission&) {}, options);
+  link_->start();
+  ASSERT_TRUE(driver_.callbacks_.after_receipt_durable);
+  bool ran = false;
+  driver_.callbacks_.after_receipt_durable([&ran] { ran = true; });
+  EXPECT_EQ(asked, 1);
+  EXPECT_TRUE(ran);
+}
+
 TEST_F(LinkControllerTest, AsksTheQueuesOnlyForTheFramesThatFitTheSlot) {
   for (int v = 1; v <= 3; ++v) submit("dest: 2 value: " + std::to_string(v));
   mac_.timed_slot(5, 5.0, clock_.now_seconds());
@@ -211,7 +238,7 @@ TEST_F(LinkControllerTest, AsksTheQueuesOnlyForTheFramesThatFitTheSlot) {
 TEST_F(LinkControllerTest, ARequestLateInItsSlotGetsWhatIsLeftOfIt) {
   link_ = std::make_unique<LinkController>(
       1, *queues_, mac_, driver_, [](queue::ReceivedMessage, const v1::ModemTransmission&) {},
-      LinkOptions{&clock_, kDefaultMaxRangeM});
+      options_for(kDefaultMaxRangeM));
   link_->start();
   for (int v = 1; v <= 3; ++v) submit("dest: 2 value: " + std::to_string(v));
   // 6 s slot, begun 1 s ago: 5 s are left, one frame's worth.
@@ -221,7 +248,7 @@ TEST_F(LinkControllerTest, ARequestLateInItsSlotGetsWhatIsLeftOfIt) {
   // With the guard for 100 m instead, the same 5 s hold both frames.
   link_ = std::make_unique<LinkController>(
       1, *queues_, mac_, driver_, [](queue::ReceivedMessage, const v1::ModemTransmission&) {},
-      LinkOptions{&clock_, 100});
+      options_for(100));
   link_->start();
   mac_.timed_slot(5, 6.0, clock_.now_seconds() - 1.0);
   ASSERT_EQ(driver_.sent.size(), 2u);
@@ -231,7 +258,7 @@ TEST_F(LinkControllerTest, ARequestLateInItsSlotGetsWhatIsLeftOfIt) {
 TEST_F(LinkControllerTest, AnAnswerToAPollAlsoAllowsForThePollsTravel) {
   link_ = std::make_unique<LinkController>(
       1, *queues_, mac_, driver_, [](queue::ReceivedMessage, const v1::ModemTransmission&) {},
-      LinkOptions{&clock_, kDefaultMaxRangeM});
+      options_for(kDefaultMaxRangeM));
   link_->start();
   for (int v = 1; v <= 3; ++v) submit("dest: 2 value: " + std::to_string(v));
   // Dated 1.2 s ago (the poll's arrival began, then the turnaround) in a

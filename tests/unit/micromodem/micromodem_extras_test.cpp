@@ -281,6 +281,31 @@ TEST_F(MicroModemExtrasTest, FdpToAnUnlistedMm1GoesOutButIsNeverAcknowledged) {
   EXPECT_EQ(b_->written.find("$CCTDP"), std::string::npos);  // nothing to acknowledge
 }
 
+// The deadline passing while the sent packet awaits its ACK is not a
+// failure: the packet went out, the result says it was not acknowledged.
+TEST_F(MicroModemExtrasTest, FdpWhoseDeadlinePassesAwaitingTheAckSucceedsUnacknowledged) {
+  two_nodes(Generation::kMM2, Generation::kMM1, {});
+  a_->config.mutable_micromodem()->add_cfg("psk.packet.mod_hdr_version,1");
+  a_->driver = std::make_unique<MicroModemDriver>(a_->config, scheduler_,
+                                                  std::make_unique<FakeModemPort>(a_->modem, scheduler_, &a_->written));
+  a_->start();
+  run(8s);
+  ASSERT_TRUE(a_->driver->ready());
+  MicroModemTransmission ask = kind(MicroModemTransmission::FDP);
+  ask.set_fdp_rate(5);
+  ask.set_fdp_data("hi");
+  // Rate 5: about 3.3 s in the water, then at least 5.8 s more for an ACK;
+  // the call's 5 s end between the two.
+  constexpr Duration kFdpDeadline = 5s;
+  const double start = scheduler_.clock().now_seconds();
+  DriverSpecificResult result = send(request(2, ask), kFdpDeadline);
+  ASSERT_EQ(result.status, DriverSpecificStatus::kOk) << result.error;
+  EXPECT_FALSE(result.transmission.GetExtension(drivers::micromodem_transmission).fdp_acknowledged());
+  EXPECT_NE(a_->written.find("$CCTDP,2,"), std::string::npos);
+  EXPECT_LE(scheduler_.clock().now_seconds() - start, std::chrono::duration<double>(kFdpDeadline).count() + 0.2)
+      << "answered at the call's deadline, not at the end of the ACK wait";
+}
+
 TEST_F(MicroModemExtrasTest, FdpIsNotDecodedByAnMm2WithTheLegacyHeaderVersion) {
   two_nodes();  // neither sets psk.packet.mod_hdr_version 1
   a_->config.mutable_micromodem()->add_cfg("psk.packet.mod_hdr_version,1");

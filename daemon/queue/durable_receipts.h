@@ -1,0 +1,27 @@
+#pragma once
+// When may a receiver acknowledge what it heard? Only once the received
+// events are committed: an ACK makes the sender forget its copy, so an ACK
+// sent earlier leaves a window (hearing to commit) where a crash loses the
+// message for good. This is the rule the link's software ACKs wait on
+// (link::DriverCallbacks::after_receipt_durable); tests/integration
+// queue_crash_test kills a receiver to show it holds.
+
+#include <functional>
+
+#include "queue/message_journal.h"
+
+namespace acomms::queue {
+
+using Task = std::function<void()>;
+// Hands a task to the core thread (core::EventLoop::post).
+using PostToCore = std::function<void(Task)>;
+// Runs `then` on the core thread once every event given to the journal so
+// far is committed; never if that commit fails (logged: the ACK is withheld
+// and the sender sends again).
+using AfterReceiptsDurable = std::function<void(Task then)>;
+
+// `journal` must outlive the function returned, and `post` must be usable
+// from the journal's commit thread.
+AfterReceiptsDurable durable_receipts(MessageJournal& journal, PostToCore post);
+
+}  // namespace acomms::queue
