@@ -45,6 +45,7 @@ std::string packet_type_text(int32_t type) {
 // "tx 2 rate 5 PSK, SNR in 12.5 dB out 9 dB, level 131 dB, MSE -14 dB, ...".
 std::string link_text(const v1::LinkFigures& link) {
   std::string text = "tx " + std::to_string(link.transmission_src()) + " rate " + std::to_string(link.rate());
+  const size_t unmeasured = text.size();
   if (link.has_packet_type()) text += " " + packet_type_text(link.packet_type());
   auto add = [&text](const std::string& part) { text += ", " + part; };
   if (link.has_snr_in_db() || link.has_snr_out_db()) {
@@ -59,7 +60,9 @@ std::string link_text(const v1::LinkFigures& link) {
   if (link.has_doppler_mps()) add("Doppler " + number_text(link.doppler_mps()) + " m/s");
   if (link.has_delay_spread_s()) add("delay spread " + number_text(link.delay_spread_s()) + " s");
   if (link.has_bad_frames()) add("bad frames " + std::to_string(link.bad_frames()));
-  if (!link.link_quality().empty()) add(link.link_quality());
+  // The driver's free-text summary repeats what it measured (--json has
+  // it); shown only when it is all there is.
+  if (text.size() == unmeasured && !link.link_quality().empty()) add(link.link_quality());
   return text;
 }
 

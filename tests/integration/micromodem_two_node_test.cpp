@@ -105,6 +105,7 @@ TEST_P(MicroModemTwoNode, ACommandReachesTheVehicleWithLinkFiguresAndTheModemsAc
   ASSERT_EQ(table.exit_code, 0) << table.err;
   const std::string how = "tx 2 rate " + std::to_string(GetParam()) + (GetParam() == 0 ? " FSK, SNR in " : " PSK, SNR in ");
   EXPECT_NE(table.out.find(how), std::string::npos) << table.out;
+  EXPECT_EQ(table.out.find("snr_in_db="), std::string::npos) << "the driver's text repeats the figures:\n" << table.out;
 }
 
 INSTANTIATE_TEST_SUITE_P(Rates, MicroModemTwoNode, ::testing::Values(0, 5),
