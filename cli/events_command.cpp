@@ -29,13 +29,53 @@ double now_s() {
 
 std::string id_text(int64_t id) { return id > 0 ? std::to_string(id) : "-"; }
 
+// The Micro-Modem's packet types ($CACST; ReceptionFigures.packet_type).
+std::string packet_type_text(int32_t type) {
+  switch (type) {
+    case 1: return "FSK";
+    case 2: return "FSK mini";
+    case 3: return "PSK";
+    case 4: return "PSK mini";
+    case 5: return "FDP";
+    default: return "type " + std::to_string(type);
+  }
+}
+
+// A received event's link figures on one line, only what the modem gave:
+// "tx 2 rate 5 PSK, SNR in 12.5 dB out 9 dB, level 131 dB, MSE -14 dB, ...".
+std::string link_text(const v1::LinkFigures& link) {
+  std::string text = "tx " + std::to_string(link.transmission_src()) + " rate " + std::to_string(link.rate());
+  const size_t unmeasured = text.size();
+  if (link.has_packet_type()) text += " " + packet_type_text(link.packet_type());
+  auto add = [&text](const std::string& part) { text += ", " + part; };
+  if (link.has_snr_in_db() || link.has_snr_out_db()) {
+    std::string snr = "SNR";
+    if (link.has_snr_in_db()) snr += " in " + number_text(link.snr_in_db()) + " dB";
+    if (link.has_snr_out_db()) snr += " out " + number_text(link.snr_out_db()) + " dB";
+    add(snr);
+  }
+  if (link.has_signal_level_db()) add("level " + number_text(link.signal_level_db()) + " dB");
+  if (link.has_noise_db()) add("noise " + number_text(link.noise_db()) + " dB");
+  if (link.has_mse_db()) add("MSE " + number_text(link.mse_db()) + " dB");
+  if (link.has_doppler_mps()) add("Doppler " + number_text(link.doppler_mps()) + " m/s");
+  if (link.has_delay_spread_s()) add("delay spread " + number_text(link.delay_spread_s()) + " s");
+  if (link.has_bad_frames()) add("bad frames " + std::to_string(link.bad_frames()));
+  // The driver's free-text summary repeats what it measured (--json has
+  // it); shown only when it is all there is.
+  if (text.size() == unmeasured && !link.link_quality().empty()) add(link.link_quality());
+  return text;
+}
+
 void print_events(const v1::EventsResponse& response) {
   if (response.truncated()) std::printf("(older events left out; narrow with --since or raise --limit)\n");
   std::printf("%-25s %-9s %-28s %7s %-17s %-8s %s\n", "TIME", "KIND", "TYPE", "MESSAGE", "FRAME", "SRC>DEST", "DETAIL");
   for (const v1::Event& e : response.events()) {
     std::string frame = e.frame_id() > 0 ? std::to_string(e.frame_id()) : "-";
+    // A received event's detail is how it arrived: its link figures.
+    std::string detail = e.detail();
+    if (e.has_link()) detail += (detail.empty() ? "" : "; ") + link_text(e.link());
     std::printf("%-25s %-9s %-28s %7s %-17s %-8s %s\n", utc_text(e.time()).c_str(), e.kind().c_str(), e.type().c_str(),
-                id_text(e.message_id()).c_str(), frame.c_str(), route_text(e.src(), e.dest()).c_str(), e.detail().c_str());
+                id_text(e.message_id()).c_str(), frame.c_str(), route_text(e.src(), e.dest()).c_str(), detail.c_str());
   }
 }
 
@@ -110,7 +150,8 @@ void add_events_command(CLI::App& app, const GlobalOptions& global) {
       ->type_name("N");
   events->footer(
       "Oldest first: each message's story (queued, sent in a frame, acked, retried, expired, dropped "
-      "or cancelled) and what was received. T is seconds since the Unix epoch, \"now\", or relative "
+      "or cancelled) and what was received, with the link figures it arrived with (who transmitted, "
+      "rate, packet type, SNR, signal level, MSE, ...; \"link\" in --json). T is seconds since the Unix epoch, \"now\", or relative "
       "to now: -30s, -10m, -2h, -1d.\n\n"
       "Examples:\n"
       "  acommsctl events --since -10m\n"

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/core_thread.h"
+#include "link/link_figures.h"
 
 namespace acomms::link {
 
@@ -185,9 +186,11 @@ void LinkController::on_receive(const v1::ModemTransmission& transmission) {
     stats_.bad_frames_received += transmission.figures().bad_frames();
   }
   // Frames are filtered message by message (destination roles), not by the
-  // transmission's dest: a unicast frame may carry broadcast messages.
+  // transmission's dest: a unicast frame may carry broadcast messages. Each
+  // message's event keeps the transmission's figures, for replay.
+  const std::string figures = link_figures(transmission).SerializeAsString();
   for (const std::string& frame : transmission.frame()) {
-    for (queue::ReceivedMessage& message : queues_.receive(frame, transmission.src())) {
+    for (queue::ReceivedMessage& message : queues_.receive(frame, transmission.src(), figures)) {
       ++stats_.messages_delivered;
       deliver_(std::move(message), transmission);
     }

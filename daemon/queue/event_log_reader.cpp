@@ -18,6 +18,13 @@ std::string placeholders(size_t n) {
   return out;
 }
 
+// NULL (no figures: another kind of event, or a row older than migration
+// 0008) stays apart from a zero-length blob (figures all at their defaults).
+std::optional<std::string> link_figures_of(const store::Statement& statement, int column) {
+  if (statement.is_null(column)) return std::nullopt;
+  return statement.column_blob(column);
+}
+
 }  // namespace
 
 QueueEventKind event_kind_from_string(const std::string& kind) {
@@ -35,7 +42,7 @@ EventLogReader::EventLogReader(const std::string& store_path)
 EventPage EventLogReader::query(const EventQuery& query) {
   for (const std::string& kind : query.kinds) (void)event_kind_from_string(kind);
   std::string sql =
-      "SELECT id, time, kind, type, message_id, frame_id, src, dest, detail FROM event_log WHERE 1";
+      "SELECT id, time, kind, type, message_id, frame_id, src, dest, detail, link_figures FROM event_log WHERE 1";
   if (query.since > 0) sql += " AND time >= ?";
   if (query.until > 0) sql += " AND time <= ?";
   if (!query.kinds.empty()) sql += " AND kind IN (" + placeholders(query.kinds.size()) + ")";
@@ -71,6 +78,7 @@ EventPage EventLogReader::query(const EventQuery& query) {
     e.src = statement.is_null(6) ? -1 : static_cast<int32_t>(statement.column_int64(6));
     e.dest = statement.is_null(7) ? -1 : static_cast<int32_t>(statement.column_int64(7));
     e.detail = statement.column_text(8);
+    e.link_figures = link_figures_of(statement, 9);
     page.events.push_back(std::move(logged));
   }
   std::reverse(page.events.begin(), page.events.end());
@@ -80,7 +88,7 @@ EventPage EventLogReader::query(const EventQuery& query) {
 std::vector<StoredReceived> EventLogReader::received_after(int64_t after, const std::vector<std::string>& types,
                                                            std::optional<int32_t> src, size_t limit) {
   std::string sql =
-      "SELECT seq, time, type, src, dest, encoded FROM event_log "
+      "SELECT seq, time, type, src, dest, encoded, link_figures FROM event_log "
       "WHERE seq > ? AND kind = 'received' AND encoded IS NOT NULL";
   if (!types.empty()) sql += " AND type IN (" + placeholders(types.size()) + ")";
   if (src) sql += " AND src = ?";
@@ -102,6 +110,7 @@ std::vector<StoredReceived> EventLogReader::received_after(int64_t after, const 
     r.src = statement.is_null(3) ? -1 : static_cast<int32_t>(statement.column_int64(3));
     r.dest = statement.is_null(4) ? -1 : static_cast<int32_t>(statement.column_int64(4));
     r.encoded = statement.column_blob(5);
+    r.link_figures = link_figures_of(statement, 6);
   }
   return out;
 }

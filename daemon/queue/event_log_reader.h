@@ -42,6 +42,8 @@ struct StoredReceived {
   int32_t src = -1;
   int32_t dest = -1;
   std::string encoded;  // its DCCL bytes
+  // The serialized acomms.v1.LinkFigures it arrived with (QueueEvent::link_figures).
+  std::optional<std::string> link_figures;
 };
 
 // Which received sequence numbers the store can still replay.

@@ -20,7 +20,8 @@
 
 namespace acomms::queue {
 
-std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32_t transmission_src) {
+std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32_t transmission_src,
+                                                   std::optional<std::string_view> link_figures) {
   ACOMMS_ASSERT_CORE_THREAD();
   double now = clock_.now_seconds();
   std::vector<ReceivedMessage> out;
@@ -52,7 +53,7 @@ std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32
       JournalMessage as_event;
       as_event.src = received.src;
       as_event.dest = received.dest;
-      emit(QueueEventKind::kReceived, state, as_event, now, 0, "", false, false, received.encoded);
+      emit(QueueEventKind::kReceived, state, as_event, now, 0, "", false, false, received.encoded, link_figures);
       received.seq = last_received_seq();  // the number emit() just gave it
       out.push_back(std::move(received));
     } catch (const dccl::Error& e) {

@@ -4,6 +4,7 @@
 // message never disappears silently.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -38,6 +39,12 @@ struct QueueEvent {
   // kReceived: its received sequence number (1, 2, ...; never reused, see
   // migrations/0005_received_sequence.sql); 0 on every other kind.
   int64_t seq = 0;
+  // kReceived: the link figures of the transmission that carried it, a
+  // serialized acomms.v1.LinkFigures (link/link_figures.h) the queue only
+  // carries, never reads. nullopt: none came with it (every other kind, and
+  // received events logged before migrations/0008_link_figures.sql); an
+  // empty string is a LinkFigures whose fields are all default, not none.
+  std::optional<std::string> link_figures;
 };
 
 struct JournalMessage;

@@ -91,7 +91,7 @@ std::vector<std::string> QueueManager::add_types() {
 
 void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMessage& record, double now,
                         uint64_t frame_id, const char* detail, bool removes, bool journaled,
-                        std::string_view encoded) {
+                        std::string_view encoded, std::optional<std::string_view> link_figures) {
   QueueStats& s = state.stats;
   switch (kind) {
     case QueueEventKind::kQueued: ++s.queued; break;
@@ -113,6 +113,7 @@ void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMess
   event.detail = detail;
   event.removes_message = removes;
   event.encoded = encoded;
+  if (link_figures) event.link_figures.emplace(*link_figures);
   // Numbered here, on the core thread, so numbers follow the order messages
   // are passed on; the journal makes each durable with its event.
   if (kind == QueueEventKind::kReceived) event.seq = ++last_received_seq_;

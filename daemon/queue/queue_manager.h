@@ -118,8 +118,12 @@ class QueueManager {
   // Splits a received frame into messages and returns those for this node
   // (destination role = own id or broadcast; all when promiscuous).
   // Undecodable bytes end the frame: what came before is kept, the rest is
-  // counted and logged as malformed.
-  std::vector<ReceivedMessage> receive(std::string_view frame, int32_t transmission_src);
+  // counted and logged as malformed. `link_figures` (a serialized
+  // acomms.v1.LinkFigures of the transmission that carried the frame) is
+  // logged with each message's received event, so a replay can give it
+  // back; nullopt: the link gave none.
+  std::vector<ReceivedMessage> receive(std::string_view frame, int32_t transmission_src,
+                                       std::optional<std::string_view> link_figures = std::nullopt);
 
   // Drops messages past their ttl now (also done on every build_frames).
   void expire();
@@ -203,10 +207,11 @@ class QueueManager {
   std::vector<Contender> contenders(double now);
   TypeState* contest(std::vector<Contender>& field, double now, size_t room, int32_t dest);
   // Counts, logs and journals an event (`journaled`: the journal already has
-  // it; `encoded`: a received message's bytes).
+  // it; `encoded` and `link_figures`: a received message's bytes and the
+  // figures of its transmission).
   void emit(QueueEventKind kind, TypeState& state, const JournalMessage& message, double now,
             uint64_t frame_id, const char* detail, bool removes, bool journaled = false,
-            std::string_view encoded = {});
+            std::string_view encoded = {}, std::optional<std::string_view> link_figures = std::nullopt);
 
   const dccl::Codec& codec_;
   v1::QueueConfig config_;

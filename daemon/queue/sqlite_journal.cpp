@@ -15,8 +15,8 @@ constexpr std::string_view kInsertMessage =
     "INSERT INTO queued_messages (type, payload, src, dest, submitted_at, ttl_s) "
     "VALUES (?, ?, ?, ?, ?, ?)";
 constexpr std::string_view kInsertEvent =
-    "INSERT INTO event_log (time, kind, type, message_id, frame_id, src, dest, detail, encoded, seq) "
-    "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
+    "INSERT INTO event_log (time, kind, type, message_id, frame_id, src, dest, detail, encoded, seq, "
+    "link_figures) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
 // MAX: the counter never goes back, whatever order numbers arrive in.
 constexpr std::string_view kAdvanceReceivedSeq =
     "UPDATE event_sequence SET last = MAX(last, ?) WHERE name = 'received'";
@@ -120,6 +120,13 @@ void SqliteJournal::write_event(const QueueEvent& event) {
     insert.bind_blob(9, event.encoded);
   }
   bind_or_null(insert, 10, event.seq, 0);
+  // An empty string is figures with every field at its default: a
+  // zero-length blob, not NULL (none).
+  if (event.link_figures) {
+    insert.bind_blob(11, *event.link_figures);
+  } else {
+    insert.bind_null(11);
+  }
   insert.step();
   if (event.seq != 0) {
     // The number and its event are durable together: after a crash the

@@ -1,4 +1,6 @@
 // Events: the event log, what happened to messages.
+#include <spdlog/spdlog.h>
+
 #include <cmath>
 
 #include "service/acomms_service.h"
@@ -48,6 +50,10 @@ grpc::Status AcommsService::Events(grpc::ServerContext*, const v1::EventsRequest
     out->set_src(e.src);
     out->set_dest(e.dest);
     out->set_detail(e.detail);
+    if (e.link_figures && !out->mutable_link()->ParseFromString(*e.link_figures)) {
+      out->clear_link();
+      spdlog::warn("events: stored link figures of event {} do not parse: shown without them", logged.id);
+    }
   }
   response->set_truncated(page.truncated);
   return grpc::Status::OK;

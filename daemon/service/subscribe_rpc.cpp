@@ -42,6 +42,11 @@ v1::ReceivedMessage from_store(const queue::StoredReceived& stored, const dccl::
   out.set_dest(stored.dest < 0 ? 0 : stored.dest);
   out.set_receive_time(stored.time);
   out.set_seq(stored.seq);
+  // The figures it carried live (none for rows older than migration 0008).
+  if (stored.link_figures && !out.mutable_link()->ParseFromString(*stored.link_figures)) {
+    out.clear_link();
+    spdlog::warn("subscribe: stored link figures of seq {} do not parse: replayed without them", stored.seq);
+  }
   try {
     auto message = codec.decode_as(stored.type, stored.encoded);
     out.set_payload(message->SerializePartialAsString());

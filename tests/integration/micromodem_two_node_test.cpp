@@ -3,9 +3,13 @@
 // ports like serial-to-TCP gateways), with fixed TDMA: a Command submitted
 // on the topside (node 2) reaches the vehicle's (node 1) subscriber with the
 // modem's link figures, and the modem's own ACK clears the topside's queue.
+// The figures are kept with the message: replayed from the store (Subscribe
+// after: 0), in Events, and in `acommsctl events`, they are the live ones.
 // Once at rate 0 (FSK) and once at rate 5 (PSK). The fake and the drivers
 // run 4x faster than real time (micromodem_network.h); the MAC's slots are
 // real seconds.
+#include <google/protobuf/util/json_util.h>
+#include <google/protobuf/util/message_differencer.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -74,6 +78,34 @@ TEST_P(MicroModemTwoNode, ACommandReachesTheVehicleWithLinkFiguresAndTheModemsAc
   EXPECT_EQ(raw.exit_code, 0) << raw.err;
   EXPECT_NE(raw.out.find(" >> $CCCFG,SRC,1*"), std::string::npos) << raw.out.substr(0, 2000);
   EXPECT_NE(raw.out.find(" << $CACFG,SRC,1*"), std::string::npos);
+
+  // Kept with the message in the vehicle's event log: a replay from the
+  // store carries the figures it carried live.
+  using google::protobuf::util::MessageDifferencer;
+  StreamSubscriber replay(net_->socket(1), "example.Command", 0);
+  ASSERT_TRUE(replay.wait_for([](const auto& received) { return !received.empty(); }, 30s));
+  const v1::ReceivedMessage replayed = replay.received().front();
+  EXPECT_EQ(replayed.seq(), command.seq());
+  EXPECT_TRUE(replayed.has_link());
+  EXPECT_TRUE(MessageDifferencer::Equals(replayed.link(), command.link()))
+      << "live:\n" << command.link().DebugString() << "replayed:\n" << replayed.link().DebugString();
+
+  // And in `acommsctl events`: --json has them as the API's "link", the
+  // table shows who sent it, the rate, the packet type and the SNR.
+  const std::vector<std::string> received_events = {"--socket", net_->socket(1), "events", "--kind", "received"};
+  std::vector<std::string> as_json = received_events;
+  as_json.push_back("--json");
+  RunResult json = run(ACOMMSCTL_BINARY, as_json, (net_->dir() / "events-json").string());
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  v1::EventsResponse events;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(json.out, &events).ok()) << json.out;
+  ASSERT_EQ(events.events_size(), 1) << json.out;
+  EXPECT_TRUE(MessageDifferencer::Equals(events.events(0).link(), command.link())) << json.out;
+  RunResult table = run(ACOMMSCTL_BINARY, received_events, (net_->dir() / "events-text").string());
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  const std::string how = "tx 2 rate " + std::to_string(GetParam()) + (GetParam() == 0 ? " FSK, SNR in " : " PSK, SNR in ");
+  EXPECT_NE(table.out.find(how), std::string::npos) << table.out;
+  EXPECT_EQ(table.out.find("snr_in_db="), std::string::npos) << "the driver's text repeats the figures:\n" << table.out;
 }
 
 INSTANTIATE_TEST_SUITE_P(Rates, MicroModemTwoNode, ::testing::Values(0, 5),

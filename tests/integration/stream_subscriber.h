@@ -7,6 +7,7 @@
 #include <chrono>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -18,9 +19,13 @@ namespace acomms::testing {
 
 class StreamSubscriber {
  public:
-  StreamSubscriber(const std::string& socket, const std::string& type) : stub_(api(socket)) {
+  // `after`: replay the store's messages after that seq first (Subscribe's
+  // `after`); unset: live messages only.
+  StreamSubscriber(const std::string& socket, const std::string& type, std::optional<int64_t> after = std::nullopt)
+      : stub_(api(socket)) {
     v1::SubscribeRequest request;
     request.add_types(type);
+    if (after) request.set_after(*after);
     reader_ = stub_->Subscribe(&context_, request);
     // The server sends headers once subscribed: nothing published after
     // this can be missed.

@@ -1,0 +1,13 @@
+-- The link figures of each received message, on its "received" event: who
+-- transmitted it, at what rate, and what the modem measured (SNR in and
+-- out, signal level, MSE, Doppler, delay spread, packet type, bad frames),
+-- serialized as an acomms.v1.LinkFigures (api/proto/acomms/v1/link_figures.proto).
+-- Kept so that a message replayed to a resuming subscriber carries the
+-- figures it carried live, and so that `acommsctl events` can show how
+-- each message arrived.
+--
+-- NULL on every other kind of event, and on the received events written
+-- before this migration: their figures were never kept, and a replay of
+-- them carries none (it does not fail). Nullable, no default: the ALTER
+-- TABLE rewrites no existing row.
+ALTER TABLE event_log ADD COLUMN link_figures BLOB;
