@@ -125,9 +125,7 @@ void StreamReceiver::start_afresh(const WireMessage& full, int32_t d, double now
       --dropped;
       consume(held.message, now, out);
     }
-    for (auto it = held_.begin(); it != held_.end();) {
-      it = sequence_distance(it->first, last_) <= 0 ? held_.erase(it) : std::next(it);
-    }
+    drop_behind();
   }
   const uint64_t delivered = counters_.positions - positions_before;
   held_ = std::move(ahead);
@@ -167,6 +165,10 @@ void StreamReceiver::release(double now, std::vector<ReceivedPosition>* out) {
     held_.erase(next);
     consume(held.message, now, out);
   }
+  drop_behind();
+}
+
+void StreamReceiver::drop_behind() {
   // What is now behind us can never be consumed.
   for (auto it = held_.begin(); it != held_.end();) {
     it = sequence_distance(it->first, last_) <= 0 ? held_.erase(it) : std::next(it);

@@ -86,6 +86,8 @@ class StreamReceiver {
   };
   void consume(const WireMessage& message, double now, std::vector<ReceivedPosition>* out);
   void release(double now, std::vector<ReceivedPosition>* out);
+  // Forgets the held messages at or before the last consumed.
+  void drop_behind();
   // A body that did not decode: out of step until the next full.
   void undecodable(const WireMessage& message, const char* why);
   // Whether `full`, d messages on from the last consumed, can be the
