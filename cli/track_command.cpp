@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "api_client.h"
 #include "events_command.h"
@@ -38,11 +39,18 @@ void run_track(const GlobalOptions& global, const TrackOptions& options) {
   v1::TrackResponse response = client.call(&v1::Acomms::Stub::Track, request);
   if (response.truncated()) std::fprintf(stderr, "acommsctl: more positions than one answer holds: ask again with --since\n");
   if (!options.kml.empty()) {
+    // Built first: a track without lat/lon leaves no half-written file.
+    std::ostringstream kml;
+    write_track_kml(response, options.src, kml);
     std::ofstream file(options.kml);
     if (!file) throw UsageError("track: cannot write " + options.kml);
-    write_track_kml(response, options.src, file);
-    if (!file.flush()) throw UsageError("track: writing " + options.kml + " failed");
-    std::fprintf(stderr, "%d positions written to %s\n", response.positions_size(), options.kml.c_str());
+    if (!(file << kml.str()).flush()) throw UsageError("track: writing " + options.kml + " failed");
+    if (response.positions_size() == 0) {
+      std::fprintf(stderr, "no positions from node %d%s: %s is a KML document with no track\n", options.src,
+                   options.since.empty() ? "" : (" since " + options.since).c_str(), options.kml.c_str());
+    } else {
+      std::fprintf(stderr, "%d positions written to %s\n", response.positions_size(), options.kml.c_str());
+    }
     return;
   }
   if (global.json) {
@@ -71,12 +79,22 @@ void write_track_kml(const v1::TrackResponse& track, int32_t src, std::ostream& 
   }
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<kml xmlns=\"http://www.opengis.net/kml/2.2\">\n<Document>\n"
-      << "<name>acomms track of node " << src << "</name>\n"
-      << "<Placemark>\n<name>node " << src << "</name>\n<LineString>\n"
+      << "<name>acomms track of node " << src << "</name>\n";
+  if (track.positions_size() == 0) {
+    // Still a valid document (a periodic export keeps its viewer happy),
+    // and it says why it shows nothing.
+    out << "<description>no positions received from node " << src << "</description>\n</Document>\n</kml>\n";
+    return;
+  }
+  // KML 2.2: a LineString needs two coordinates or more; one is a Point.
+  const char* geometry = track.positions_size() == 1 ? "Point" : "LineString";
+  out << "<Placemark>\n<name>node " << src << "</name>\n<" << geometry << ">\n"
       << "<altitudeMode>absolute</altitudeMode>\n<coordinates>\n";
+  // lon,lat,altitude: x before y, as KML orders them; altitude is metres
+  // above sea level, so minus the depth.
   for (const telemetry::Position& p : track.positions())
-    out << number(p.lon()) << ',' << number(p.lat()) << ',' << number(-p.depth()) << '\n';
-  out << "</coordinates>\n</LineString>\n</Placemark>\n</Document>\n</kml>\n";
+    out << number(p.lon()) << ',' << number(p.lat()) << ',' << number(0.0 - p.depth()) << '\n';  // not "-0"
+  out << "</coordinates>\n</" << geometry << ">\n</Placemark>\n</Document>\n</kml>\n";
 }
 
 void add_track_command(CLI::App& app, const GlobalOptions& global) {

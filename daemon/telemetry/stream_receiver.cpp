@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <bit>
+#include <limits>
 
 #include "dccl/error.h"
 #include "telemetry/state_bytes.h"
@@ -42,18 +43,101 @@ std::vector<ReceivedPosition> StreamReceiver::receive(const WireMessage& message
   const int32_t d = sequence_distance(message.sequence, last_);
   if (d == 1) {
     consume(message, now, &out);
+  } else if (message.kind == MessageKind::kFull && !could_follow(message, d, now)) {
+    // Its number says "later" or "resent" but its time says otherwise: a
+    // sender that counts anew, or a late copy of an old full. Held, the
+    // old one would wait out the gap timeout and then be consumed as the
+    // next full: the stream would jump back to an old state.
+    if (newer_than_all(message, now)) {
+      start_afresh(message, d, now, &out);
+    } else {
+      ++counters_.duplicates;
+    }
   } else if (d > 1) {
     if (held_.size() < kMaxHeld || held_.count(message.sequence)) held_.emplace(message.sequence, Held{message, now});
-  } else if (message.kind == MessageKind::kFull && full_time(message, now) > last_time_s_) {
-    // A sender that lost its state counts from 0 again: its full is newer
-    // than anything we hold, whatever its number says.
-    held_.clear();
-    consume(message, now, &out);
   } else {
     ++counters_.duplicates;
   }
   release(now, &out);
   return out;
+}
+
+bool StreamReceiver::could_follow(const WireMessage& full, int32_t d, double now) const {
+  if (d <= 0) return false;
+  // Samples lie on the tau grid, one message each: d messages on from the
+  // last position are at least d tau later. Past half a cycle of tau
+  // (also the longest ttl_s, node_settings.cpp) the number no longer tells
+  // how many messages came between: d is that count modulo 4096, folded.
+  const std::optional<int64_t> since = since_last(full, now);
+  const int64_t tau = config_.tau_s;
+  return since && *since >= int64_t{d} * tau && *since < int64_t{kWireSequenceModulus / 2} * tau;
+}
+
+std::optional<int64_t> StreamReceiver::since_last(const WireMessage& full, double now) const {
+  const int64_t time = full_time(full, now);
+  int64_t since = 0;
+  // No time in a body too short, and no difference with a last time from
+  // state bytes written elsewhere: neither follows anything.
+  if (time == INT64_MIN || __builtin_sub_overflow(time, last_time_s_, &since)) return std::nullopt;
+  return since;
+}
+
+bool StreamReceiver::newer_than_all(const WireMessage& full, double now) const {
+  const int64_t time = full_time(full, now);
+  if (time <= last_time_s_) return false;
+  for (const auto& [sequence, held] : held_) {
+    if (held.message.kind == MessageKind::kFull && full_time(held.message, now) >= time) return false;
+  }
+  return true;
+}
+
+void StreamReceiver::start_afresh(const WireMessage& full, int32_t d, double now, std::vector<ReceivedPosition>* out) {
+  const uint32_t last_before = last_;
+  const int64_t last_time_before = last_time_s_;
+  // Held messages numbered after it are the new count's when its number is
+  // ahead by more than its time allows (could_follow): one of the old
+  // count numbered after it would have been sampled after it. They follow
+  // on from it as usual. Past half a cycle that proof does not hold, and
+  // whatever is held is taken as the old count's.
+  std::map<uint32_t, Held> ahead;
+  const bool new_count_ahead =
+      d > 1 && since_last(full, now).value_or(INT64_MAX) < int64_t{d} * int64_t{config_.tau_s};
+  for (auto it = held_.begin(); new_count_ahead && it != held_.end();) {
+    if (sequence_distance(it->first, last_) > d) {
+      ahead.insert(held_.extract(it++));
+    } else {
+      ++it;
+    }
+  }
+  // The rest is the old count's, all sampled before this full. The gap in
+  // front of it will not fill (its sender counts anew): its held fulls and
+  // the deltas that follow each are delivered now, as the gap timeout would
+  // have delivered them later; the deltas with no full before them cannot
+  // be decoded and are dropped.
+  const uint64_t positions_before = counters_.positions;
+  size_t dropped = held_.size();
+  while (std::optional<uint32_t> next_full = nearest_full(std::numeric_limits<double>::infinity())) {
+    ++counters_.gaps_skipped;
+    for (auto next = held_.find(*next_full); next != held_.end();
+         next = held_.find((last_ + 1) % kWireSequenceModulus)) {
+      Held held = std::move(next->second);
+      held_.erase(next);
+      --dropped;
+      consume(held.message, now, out);
+    }
+    drop_behind();
+  }
+  const uint64_t delivered = counters_.positions - positions_before;
+  held_ = std::move(ahead);
+  ++counters_.fresh_starts;
+  // Once per fresh start: the one sign a person gets that a sender lost its
+  // count (or was silent for half a cycle).
+  spdlog::warn(
+      "telemetry from {}: full {} (time {}) is newer than the last position (message {}, time {}) but its number "
+      "does not follow on: the sender counts anew; continuing from it ({} held position(s) from before "
+      "delivered, {} held message(s) dropped)",
+      src_, full.sequence, full_time(full, now), last_before, last_time_before, delivered, dropped);
+  consume(full, now, out);
 }
 
 int64_t StreamReceiver::full_time(const WireMessage& message, double now) const {
@@ -69,7 +153,7 @@ void StreamReceiver::release(double now, std::vector<ReceivedPosition>* out) {
     if (!started_) return;
     auto next = held_.find((last_ + 1) % kWireSequenceModulus);
     if (next == held_.end()) {
-      std::optional<uint32_t> skip_to = timed_out_full(now);
+      std::optional<uint32_t> skip_to = nearest_full(now - gap_timeout_s_);
       if (!skip_to) break;
       next = held_.find(*skip_to);
       ++counters_.gaps_skipped;
@@ -81,17 +165,21 @@ void StreamReceiver::release(double now, std::vector<ReceivedPosition>* out) {
     held_.erase(next);
     consume(held.message, now, out);
   }
+  drop_behind();
+}
+
+void StreamReceiver::drop_behind() {
   // What is now behind us can never be consumed.
   for (auto it = held_.begin(); it != held_.end();) {
     it = sequence_distance(it->first, last_) <= 0 ? held_.erase(it) : std::next(it);
   }
 }
 
-std::optional<uint32_t> StreamReceiver::timed_out_full(double now) const {
+std::optional<uint32_t> StreamReceiver::nearest_full(double arrived_by) const {
   std::optional<uint32_t> best;
   int32_t best_distance = 0;
   for (const auto& [sequence, held] : held_) {
-    if (held.message.kind != MessageKind::kFull || now - held.arrived < gap_timeout_s_) continue;
+    if (held.message.kind != MessageKind::kFull || held.arrived > arrived_by) continue;
     const int32_t d = started_ ? sequence_distance(sequence, last_) : 1;
     if (!best || d < best_distance) {
       best = sequence;

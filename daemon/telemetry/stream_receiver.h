@@ -10,9 +10,20 @@
 //            what was lost, oldest first); a held full whose gap has been
 //            open longer than gap_timeout_s is consumed without it (the
 //            sender gave up on the missing message: its ttl passed);
-//   d <= 0   a resend of something consumed: dropped, except a full whose
-//            time is after the last position (a sender that lost its
-//            state starts its count again), which is consumed.
+//   d <= 0   a resend of something consumed: dropped.
+// Except a full whose time cannot follow the last position d messages on
+// (d <= 0; or fewer than d tau seconds later, samples being tau apart; or
+// 2048 tau or more later, past what the 12-bit number tells apart). Such a
+// full newer than the last position and than every held full starts the
+// stream afresh at once (its sender counts anew: restarted without its
+// state): held fulls from before it are delivered with the deltas that
+// follow each, the messages numbered after it are kept when its time
+// proves them its own count's, the rest is dropped (start_afresh). One not
+// newer is an old full resent late: dropped, never held, since consumed
+// after a gap timeout it would take the stream back to an old state.
+// Between the two bounds (at least d tau and less than 2048 tau later) a
+// full may follow d - 1 messages still being resent, and waits for them as
+// any held full does.
 // A delta is applied only when the decoder is in step (a full since the
 // start, and every message since consumed); otherwise it is dropped and
 // the stream waits for the next full: a position is never decoded against
@@ -45,7 +56,8 @@ struct ReceiverCounters {
   uint64_t duplicates = 0;    // resends of consumed messages
   uint64_t out_of_step = 0;   // deltas dropped: no state to apply them to
   uint64_t undecodable = 0;   // bodies that did not decode
-  uint64_t gaps_skipped = 0;  // fulls consumed past a gap that timed out
+  uint64_t gaps_skipped = 0;  // fulls consumed past a gap that timed out (or a fresh start closed)
+  uint64_t fresh_starts = 0;  // fulls that restarted the stream: the sender counts anew
 };
 
 class StreamReceiver {
@@ -74,10 +86,22 @@ class StreamReceiver {
   };
   void consume(const WireMessage& message, double now, std::vector<ReceivedPosition>* out);
   void release(double now, std::vector<ReceivedPosition>* out);
+  // Forgets the held messages at or before the last consumed.
+  void drop_behind();
   // A body that did not decode: out of step until the next full.
   void undecodable(const WireMessage& message, const char* why);
-  // A held full past a gap older than the timeout, if any.
-  std::optional<uint32_t> timed_out_full(double now) const;
+  // Whether `full`, d messages on from the last consumed, can be the
+  // sender's same count by its time (samples are tau apart).
+  bool could_follow(const WireMessage& full, int32_t d, double now) const;
+  // Seconds from the last position to `full`'s time, if both are usable.
+  std::optional<int64_t> since_last(const WireMessage& full, double now) const;
+  // Whether `full` is later than the last position and every held full.
+  bool newer_than_all(const WireMessage& full, double now) const;
+  // Continues from `full` (d from the last consumed) whatever the gap.
+  void start_afresh(const WireMessage& full, int32_t d, double now, std::vector<ReceivedPosition>* out);
+  // The held full nearest after the last consumed among those that arrived
+  // by `arrived_by`, if any.
+  std::optional<uint32_t> nearest_full(double arrived_by) const;
   // A full's time, placed in the day nearest `now`.
   int64_t full_time(const WireMessage& message, double now) const;
 

@@ -174,6 +174,141 @@ TEST(StreamLinkTest, SenderThatLostItsStateIsFollowedFromItsNextFull) {
   expect_positions(got, sent, config);
 }
 
+// The old count up to `last` (messages 0..last), then a sender that lost its
+// state counts from 0 again over the next `restarted` samples, its first
+// `silence_s` later than the old count's last (in the cycle's upper half
+// for last > 2048, where 0 reads as 4096 - last ahead).
+struct Restart {
+  std::vector<Sent> before;
+  std::vector<Sent> after;
+};
+Restart restart_after(const TelemetryConfig& config, uint64_t seed, uint32_t last, size_t restarted,
+                      int64_t silence_s) {
+  // Tracks have gaps (fewer samples than duration / tau): half as long again.
+  const double duration_s = 1.5 * static_cast<double>(last + 1 + restarted) * config.tau_s;
+  std::vector<Sample> samples = track_samples(eval::TrackKind::kAuv, seed, duration_s, config.tau_s);
+  if (samples.size() < last + 1 + restarted) {
+    ADD_FAILURE() << "the track has " << samples.size() << " samples";
+    return {};
+  }
+  StreamSender before(config, 2, 1);
+  Restart r;
+  r.before = send_all(before, {samples.begin(), samples.begin() + last + 1});
+  EXPECT_EQ(before.last_sequence(), last);
+  StreamSender wiped(config, 2, 1);
+  EXPECT_FALSE(wiped.restore(""));
+  std::vector<Sample> rest(samples.begin() + last + 1, samples.begin() + last + 1 + static_cast<long>(restarted));
+  const int64_t shift = r.before.back().sample.time_s + silence_s - rest.front().time_s;
+  for (Sample& s : rest) s.time_s += shift;
+  r.after = send_all(wiped, rest);
+  EXPECT_EQ(r.after.front().message.sequence, 0u);
+  EXPECT_EQ(r.after.front().message.kind, MessageKind::kFull);
+  return r;
+}
+
+// The bug this guards: 0 after 3000 reads as 1096 messages ahead, so the
+// restarted sender's full was held for gap_timeout_s (30 min of nothing).
+// Its time, 10 s on where 1096 messages take 10960 s, shows a new count.
+TEST(StreamLinkTest, SenderRestartedWithoutStateInTheUpperHalfOfTheCycleIsFollowedAtOnce) {
+  TelemetryConfig config;
+  const Restart r = restart_after(config, 21, 3000, 120, config.tau_s);
+  ASSERT_FALSE(r.after.empty());
+  StreamReceiver receiver(config, 2, 1800);
+  std::vector<ReceivedPosition> got;
+  for (const Sent& s : r.before) append(&got, receiver.receive(s.message, static_cast<double>(s.sample.time_s)));
+  for (const Sent& s : r.after) {
+    std::vector<ReceivedPosition> now = receiver.receive(s.message, static_cast<double>(s.sample.time_s));
+    ASSERT_EQ(now.size(), 1u) << "message " << s.message.sequence << " of the new count, on its arrival";
+    append(&got, now);
+  }
+  std::vector<Sent> all = r.before;
+  all.insert(all.end(), r.after.begin(), r.after.end());
+  expect_positions(got, all, config);
+  EXPECT_EQ(receiver.held(), 0u);
+  EXPECT_EQ(receiver.counters().fresh_starts, 1u);
+}
+
+// The restarted sender's full lost once and resent after its first deltas
+// (which the receiver acked, so they never come again): they follow on from
+// it. A full of the old count held past a gap is delivered with its deltas
+// first, as the gap timeout would have delivered them half an hour later.
+TEST(StreamLinkTest, RestartFullDeliversTheOldCountsHeldFullsThenItsOwnDeltasThatCameFirst) {
+  TelemetryConfig config;
+  const Restart r = restart_after(config, 22, 3000, 30, 600);
+  ASSERT_FALSE(r.after.empty());
+  size_t old_full = r.before.size() - 2;
+  while (r.before[old_full].message.kind != MessageKind::kFull) --old_full;
+  const size_t lost = old_full - 2;  // never comes: its sender lost it
+  ASSERT_EQ(r.before[lost].message.kind, MessageKind::kDelta);
+  StreamReceiver receiver(config, 2, 1800);
+  std::vector<ReceivedPosition> got;
+  for (size_t i = 0; i < r.before.size(); ++i) {
+    if (i != lost) append(&got, receiver.receive(r.before[i].message, static_cast<double>(r.before[i].sample.time_s)));
+  }
+  ASSERT_EQ(receiver.held(), r.before.size() - 1 - lost);
+  const double now = static_cast<double>(r.after[5].sample.time_s);
+  for (size_t i = 1; i <= 5; ++i) EXPECT_TRUE(receiver.receive(r.after[i].message, now).empty());
+  // The full: the old count's held full and its deltas, the full, its 5 deltas.
+  std::vector<ReceivedPosition> at_once = receiver.receive(r.after[0].message, now);
+  EXPECT_EQ(at_once.size(), (r.before.size() - old_full) + 6);
+  append(&got, at_once);
+  for (size_t i = 6; i < r.after.size(); ++i) {
+    append(&got, receiver.receive(r.after[i].message, static_cast<double>(r.after[i].sample.time_s)));
+  }
+  std::vector<Sent> expected(r.before.begin(), r.before.begin() + static_cast<long>(lost));
+  expected.insert(expected.end(), r.before.begin() + static_cast<long>(old_full), r.before.end());
+  expected.insert(expected.end(), r.after.begin(), r.after.end());
+  expect_positions(got, expected, config);
+  EXPECT_EQ(receiver.held(), 0u);
+  EXPECT_EQ(receiver.counters().fresh_starts, 1u);
+  EXPECT_EQ(receiver.counters().gaps_skipped, 1u);
+}
+
+// Back after 6 h without its state (2160 tau: more than half a cycle, the
+// longest ttl_s): 0 after 4000 reads as 96 ahead, which 6 h of samples
+// could be, but past half a cycle the number cannot tell.
+TEST(StreamLinkTest, SenderBackWithoutStateAfterHalfACycleOfSilenceIsFollowedAtOnce) {
+  TelemetryConfig config;
+  const Restart r = restart_after(config, 23, 4000, 20, 6 * 3600);
+  ASSERT_FALSE(r.after.empty());
+  StreamReceiver receiver(config, 2, 1800);
+  std::vector<ReceivedPosition> got;
+  for (const Sent& s : r.before) append(&got, receiver.receive(s.message, static_cast<double>(s.sample.time_s)));
+  ASSERT_EQ(receiver.receive(r.after.front().message, static_cast<double>(r.after.front().sample.time_s)).size(), 1u);
+  EXPECT_EQ(receiver.counters().fresh_starts, 1u);
+  EXPECT_EQ(receiver.held(), 0u);
+}
+
+// The reverse risk: a full of the old count resent late (its ACK was lost)
+// after the receiver followed a restart. Its number reads as ahead of the
+// new count, its time as old: not a restart, and not held either (after
+// the gap timeout it would be consumed as the next full and the stream
+// would jump back an hour and then drop the new count as resends).
+TEST(StreamLinkTest, LateOldFullAfterARestartNeitherRestartsNorWaitsToBeConsumed) {
+  TelemetryConfig config;
+  const Restart r = restart_after(config, 24, 1499, 400, config.tau_s);
+  ASSERT_FALSE(r.after.empty());
+  size_t old_full = r.before.size() - 1;
+  while (r.before[old_full].message.kind != MessageKind::kFull) --old_full;
+  StreamReceiver receiver(config, 2, 1800);
+  std::vector<ReceivedPosition> got;
+  for (const Sent& s : r.before) append(&got, receiver.receive(s.message, static_cast<double>(s.sample.time_s)));
+  for (size_t i = 0; i < r.after.size(); ++i) {
+    const double now = static_cast<double>(r.after[i].sample.time_s);
+    append(&got, receiver.receive(r.after[i].message, now));
+    if (i == 10) {
+      ASSERT_GT(sequence_distance(r.before[old_full].message.sequence, r.after[i].message.sequence), 1);
+      EXPECT_TRUE(receiver.receive(r.before[old_full].message, now).empty());
+      EXPECT_EQ(receiver.held(), 0u);
+    }
+  }
+  std::vector<Sent> all = r.before;
+  all.insert(all.end(), r.after.begin(), r.after.end());
+  expect_positions(got, all, config);  // 400 tau later: past the gap timeout
+  EXPECT_EQ(receiver.counters().fresh_starts, 1u);
+  EXPECT_EQ(receiver.counters().gaps_skipped, 0u);
+}
+
 TEST(StreamLinkTest, ReceiverRestoredMidStreamWithHeldMessagesContinues) {
   TelemetryConfig config;
   StreamSender sender(config, 2, 1);
