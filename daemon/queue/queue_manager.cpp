@@ -148,8 +148,15 @@ void QueueManager::restore() {
     }
     if (it == by_name_.end()) {
       // No queue to put it in: log it against no type, and let it go.
-      QueueEvent event{QueueEventKind::kDropped, now, record.type, record.id, 0, record.src, record.dest,
-                       "type no longer loaded", true, {}};
+      QueueEvent event;
+      event.kind = QueueEventKind::kDropped;
+      event.time = now;
+      event.type = record.type;
+      event.message_id = record.id;
+      event.src = record.src;
+      event.dest = record.dest;
+      event.detail = "type no longer loaded";
+      event.removes_message = true;
       spdlog::warn("queue: stored message {} of type {} dropped: type no longer loaded", record.id,
                    record.type);
       journal_.record(event);
