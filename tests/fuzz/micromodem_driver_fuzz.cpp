@@ -56,7 +56,7 @@ constexpr auto kMostSimulatedTime = 600s;  // bounds one input's cost
 struct Harness {
   explicit Harness(Generation generation, bool fdp_data = false)
       : scheduler(acomms::core::Clock::time_point(std::chrono::seconds(1'700'000'000))),
-        water(scheduler, {1500, 0, 1}),
+        water(scheduler, {1500, 0, 1, {}}),
         modem(water, modem_config(kOwnId, generation, 0)),
         peer(water, modem_config(2, generation, 1500)) {
     acomms::v1::DriverConfig config;

@@ -143,7 +143,7 @@ class MicroModemDriverTest : public ::testing::Test {
   }
 
   core::SimulatedScheduler scheduler_{start_time()};
-  Water water_{scheduler_, {1500, 0, 1}};
+  Water water_{scheduler_, {1500, 0, 1, {}}};
   std::unique_ptr<Node> a_, b_;
   std::vector<Node*> nodes_;
 };
@@ -524,7 +524,9 @@ TEST_F(MicroModemDriverTest, ThousandsOfRandomSentencesNeitherCrashNorWedgeTheDr
     }
     if (s.type == "REV" && s.fields.size() >= 2 && random() % 50 == 0) s.fields[1] = "INIT";
     a_->modem.write_raw(micromodem::serialize(s) + "\r\n");
-    if (i % 100 == 0) ASSERT_NO_THROW(run(200ms));
+    if (i % 100 == 0) {
+      ASSERT_NO_THROW(run(200ms));
+    }
   }
   ASSERT_NO_THROW(run(30s));
   EXPECT_GT(a_->driver->bad_input().total(), 100u);

@@ -54,7 +54,7 @@ struct Node {
     callbacks.on_receive = [this](const ModemTransmission& tx) {
       received.push_back(tx);
       // As the queues do: an ACK for us removes the frames it names.
-      if (tx.type() != ModemTransmission::ACK || tx.dest() != this->config.modem_id() || asked.empty()) return;
+      if (tx.type() != ModemTransmission::ACK || tx.dest() != static_cast<int32_t>(this->config.modem_id()) || asked.empty()) return;
       std::vector<std::string> left;
       for (size_t i = 0; i < to_send.size(); ++i) {
         bool acked = false;
