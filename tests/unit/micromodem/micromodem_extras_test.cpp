@@ -104,6 +104,17 @@ class MicroModemExtrasTest : public ::testing::Test {
     ASSERT_TRUE(a_->driver->ready());
     ASSERT_TRUE(b_->driver->ready());
   }
+  // Node 1 an MM2 set up for FDP, node 2 an MM1 it has not been told of.
+  void mm2_and_unlisted_mm1() {
+    two_nodes(Generation::kMM2, Generation::kMM1, {});
+    // Only node 1 needs (and an MM1 refuses) the MM2 header setting.
+    a_->config.mutable_micromodem()->add_cfg("psk.packet.mod_hdr_version,1");
+    a_->driver = std::make_unique<MicroModemDriver>(
+        a_->config, scheduler_, std::make_unique<FakeModemPort>(a_->modem, scheduler_, &a_->written));
+    a_->start();
+    run(8s);
+    ASSERT_TRUE(a_->driver->ready());
+  }
   // Checks then sends from node 1; runs until it is done (at most `limit`).
   DriverSpecificResult send(const ModemTransmission& tx, Duration limit = 30s) {
     DriverSpecificResult checked = a_->driver->check_driver_specific(tx);
@@ -264,14 +275,7 @@ TEST_F(MicroModemExtrasTest, FdpTowardsAModemKnownToBeMm1IsRefusedAtOnce) {
 }
 
 TEST_F(MicroModemExtrasTest, FdpToAnUnlistedMm1GoesOutButIsNeverAcknowledged) {
-  two_nodes(Generation::kMM2, Generation::kMM1, {});
-  // Only node 1 needs (and an MM1 refuses) the MM2 header setting.
-  a_->config.mutable_micromodem()->add_cfg("psk.packet.mod_hdr_version,1");
-  a_->driver = std::make_unique<MicroModemDriver>(a_->config, scheduler_,
-                                                  std::make_unique<FakeModemPort>(a_->modem, scheduler_, &a_->written));
-  a_->start();
-  run(8s);
-  ASSERT_TRUE(a_->driver->ready());
+  ASSERT_NO_FATAL_FAILURE(mm2_and_unlisted_mm1());
   MicroModemTransmission ask = kind(MicroModemTransmission::FDP);
   ask.set_fdp_data("hi");
   DriverSpecificResult result = send(request(2, ask));
@@ -284,13 +288,7 @@ TEST_F(MicroModemExtrasTest, FdpToAnUnlistedMm1GoesOutButIsNeverAcknowledged) {
 // The deadline passing while the sent packet awaits its ACK is not a
 // failure: the packet went out, the result says it was not acknowledged.
 TEST_F(MicroModemExtrasTest, FdpWhoseDeadlinePassesAwaitingTheAckSucceedsUnacknowledged) {
-  two_nodes(Generation::kMM2, Generation::kMM1, {});
-  a_->config.mutable_micromodem()->add_cfg("psk.packet.mod_hdr_version,1");
-  a_->driver = std::make_unique<MicroModemDriver>(a_->config, scheduler_,
-                                                  std::make_unique<FakeModemPort>(a_->modem, scheduler_, &a_->written));
-  a_->start();
-  run(8s);
-  ASSERT_TRUE(a_->driver->ready());
+  ASSERT_NO_FATAL_FAILURE(mm2_and_unlisted_mm1());
   MicroModemTransmission ask = kind(MicroModemTransmission::FDP);
   ask.set_fdp_rate(5);
   ask.set_fdp_data("hi");
