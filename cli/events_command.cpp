@@ -60,6 +60,7 @@ std::string link_text(const v1::LinkFigures& link) {
   if (link.has_doppler_mps()) add("Doppler " + number_text(link.doppler_mps()) + " m/s");
   if (link.has_delay_spread_s()) add("delay spread " + number_text(link.delay_spread_s()) + " s");
   if (link.has_bad_frames()) add("bad frames " + std::to_string(link.bad_frames()));
+  if (link.has_range_m()) add("range " + number_text(link.range_m()) + " m");
   // The driver's free-text summary repeats what it measured (--json has
   // it); shown only when it is all there is.
   if (text.size() == unmeasured && !link.link_quality().empty()) add(link.link_quality());

@@ -18,6 +18,7 @@ v1::LinkFigures link_figures(const v1::ModemTransmission& transmission) {
   if (f.has_packet_type()) link.set_packet_type(f.packet_type());
   if (f.has_bad_frames()) link.set_bad_frames(f.bad_frames());
   if (f.has_noise_db()) link.set_noise_db(f.noise_db());
+  if (f.has_range_m()) link.set_range_m(f.range_m());
   return link;
 }
 

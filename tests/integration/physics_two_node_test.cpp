@@ -200,6 +200,7 @@ TEST_F(PhysicsTwoNode, AtTheDepthTheModelShadowsNothingArrivesAndAtTheLitDepthIt
   ASSERT_TRUE(status.link().has_snr_in_db()) << status.DebugString();
   // Where the fix put it, not the config.
   EXPECT_NE(status.link().link_quality().find("range_m=1000.0 "), std::string::npos) << status.DebugString();
+  EXPECT_NEAR(status.link().range_m(), 1000.0, 0.05) << status.DebugString();
   // The topside's grid has itself (60 m) as the source: the same model.
   EXPECT_NEAR(status.link().snr_in_db(), 190 - tl_lit - kNoiseDb, 1e-6);
   // That grid was run by the daemon's GRAM pool, not a thread of the driver's.
