@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <exception>
+#include <memory>
 #include <string>
 
 namespace acomms::queue {
@@ -16,16 +17,27 @@ void not_stored(const std::string& why) {
 }  // namespace
 
 AfterReceiptsDurable durable_receipts(MessageJournal& journal, PostToCore post) {
-  return [&journal, post = std::move(post)](Task then) {
+  // Failures the previous request already answered for. Touched only in the
+  // commit callbacks, which run one at a time, in order.
+  auto answered = std::make_shared<uint64_t>(journal.events_not_stored());
+  return [&journal, post = std::move(post), answered](Task then) {
     try {
-      // Commits complete in order: once this empty one is done, every
-      // event recorded before it is on disk.
-      journal.when_committed([post, then = std::move(then)](std::exception_ptr error) {
-        if (!error) return post(then);
+      // Commits complete in order: once this empty request is done, every
+      // event recorded before it is done too, stored or failed. A failure
+      // in its own batch fails this request; one in an earlier batch only
+      // shows in the journal's count.
+      journal.when_committed([&journal, post, then = std::move(then), answered](std::exception_ptr error) {
+        const uint64_t failed = journal.events_not_stored();
+        const uint64_t newly_failed = failed - *answered;
+        *answered = failed;
+        if (!error && newly_failed == 0) return post(then);
+        if (!error) return not_stored(std::to_string(newly_failed) + " event(s) recorded before it failed to commit");
         try {
           std::rethrow_exception(error);
         } catch (const std::exception& e) {
           not_stored(e.what());
+        } catch (...) {
+          not_stored("unknown failure");
         }
       });
     } catch (const std::exception& e) {  // the writer has stopped

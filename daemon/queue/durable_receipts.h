@@ -16,8 +16,10 @@ using Task = std::function<void()>;
 // Hands a task to the core thread (core::EventLoop::post).
 using PostToCore = std::function<void(Task)>;
 // Runs `then` on the core thread once every event given to the journal so
-// far is committed; never if that commit fails (logged: the ACK is withheld
-// and the sender sends again).
+// far is committed; never if any event recorded since the previous call
+// failed to commit (logged: the ACK is withheld and the sender sends again,
+// even when the failure was another event's: withholding costs a resend,
+// a wrong ACK costs the message).
 using AfterReceiptsDurable = std::function<void(Task then)>;
 
 // `journal` must outlive the function returned, and `post` must be usable

@@ -22,6 +22,7 @@ class MemoryJournal final : public MessageJournal {
   int64_t last_received_seq() override;
   // Runs `committed` at once: memory has nothing to wait for.
   void when_committed(Committed committed) override { committed(nullptr); }
+  uint64_t events_not_stored() const override { return 0; }
 
   std::vector<QueueEvent> events() const;
   size_t stored() const;

@@ -84,8 +84,16 @@ class MessageJournal {
   // journal's own thread (short, no waiting), in the order of the calls.
   // A received message is published only from here, so that a subscriber
   // never sees a sequence number a crash could hand out again.
+  // "Done" is not "stored": a record() whose own batch failed before this
+  // request's batch does not fail it (events_not_stored() tells).
   using Committed = std::function<void(std::exception_ptr error)>;
   virtual void when_committed(Committed committed) = 0;
+
+  // How many record()ed events failed to commit, since the journal was
+  // built. Read from a `committed` callback, it counts exactly the failures
+  // among the events recorded before that when_committed() (the callbacks
+  // run in order, each after everything before it is done).
+  virtual uint64_t events_not_stored() const = 0;
 
   // Returns once everything recorded so far is committed.
   virtual void flush() = 0;

@@ -84,9 +84,10 @@ void SqliteJournal::record(const QueueEvent& event) {
   // event that removes a message, the store keeps the row the queue has
   // forgotten: at the next start that message is queued (and sent) again.
   writer_.post([this, event](Database&) { write_event(event); },
-               [kind = event.kind, type = event.type, id = event.message_id,
+               [this, kind = event.kind, type = event.type, id = event.message_id,
                 removes = event.removes_message](std::exception_ptr error) {
                  if (!error) return;
+                 ++events_not_stored_;
                  std::string why;
                  try {
                    std::rethrow_exception(error);

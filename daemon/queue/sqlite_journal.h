@@ -10,6 +10,9 @@
 // can never keep the message and lose the event that removed it, or the
 // reverse.
 
+#include <atomic>
+#include <cstdint>
+
 #include "queue/message_journal.h"
 #include "store/group_commit_writer.h"
 
@@ -34,6 +37,7 @@ class SqliteJournal final : public MessageJournal {
   int64_t last_received_seq() override;
   // Throws store::StoreError when the writer is stopped.
   void when_committed(Committed committed) override;
+  uint64_t events_not_stored() const override { return events_not_stored_.load(); }
   // Throws store::StoreError when the last batch failed to commit.
   void flush() override;
 
@@ -41,6 +45,8 @@ class SqliteJournal final : public MessageJournal {
   void write_event(const QueueEvent& event);
 
   store::GroupCommitWriter& writer_;
+  // Counted on the writer thread, as each failed event is reported.
+  std::atomic<uint64_t> events_not_stored_{0};
 };
 
 }  // namespace acomms::queue

@@ -38,6 +38,7 @@ class NullJournal final : public queue::MessageJournal {
   void flush() override {}
   int64_t last_received_seq() override { return 0; }
   void when_committed(Committed committed) override { committed(nullptr); }
+  uint64_t events_not_stored() const override { return 0; }
 
  private:
   int64_t next_id_ = 0;

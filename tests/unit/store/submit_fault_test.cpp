@@ -27,6 +27,7 @@
 #include "core/event_loop.h"
 #include "dccl/codec.h"
 #include "faulty_vfs.h"
+#include "queue/durable_receipts.h"
 #include "queue/queue_manager.h"
 #include "queue/sqlite_journal.h"
 #include "queue/submitter.h"
@@ -393,6 +394,42 @@ TEST_F(SubmitFaultTest, AnEventThatFailsToCommitIsLoggedAndTheDaemonKeepsServing
   ASSERT_TRUE(after.ok()) << after.text;
   EXPECT_TRUE(writer_->running());
   EXPECT_EQ(queued_ids(), std::set<int64_t>{after.message_id});
+}
+
+// The ACK's rule (queue/durable_receipts.h): a received message whose event
+// failed to commit is not acknowledged, though the ACK's own commit, in a
+// later batch, succeeds; once receipts are stored again, ACKs go out again.
+TEST_F(SubmitFaultTest, NoAckForAReceiptWhoseEventFailedToCommitInAnEarlierBatch) {
+  std::atomic<int> acks{0};
+  AfterReceiptsDurable after_durable =
+      durable_receipts(*journal_, [](Task then) { then(); });  // run on the writer thread: no core here
+  auto receive = [&](int value) {
+    auto message = codec_.new_message("qf.Status");
+    EXPECT_TRUE(pb::TextFormat::ParseFromString("dest: 1 value: " + std::to_string(value), message.get()));
+    return core_->call([&] { return queues_->receive(codec_.encode(*message), 2).size(); });
+  };
+  {
+    auto hold = hold_writer();
+    FaultyVfs::instance().arm({VfsCall::kWrite, VfsFile::kWal, SQLITE_IOERR_WRITE, 0, true});
+    EXPECT_EQ(receive(1), 1u);
+    hold->release();
+  }
+  try {
+    writer_->flush();  // the received event's batch, failed
+  } catch (const store::StoreError&) {
+  }
+  ASSERT_GE(FaultyVfs::instance().failures(), 1) << "the fault never hit";
+  FaultyVfs::instance().disarm();
+  after_durable([&acks] { ++acks; });
+  writer_->flush();  // the ACK's own (empty) request: committed
+  EXPECT_EQ(acks.load(), 0) << "acknowledged a message the store does not hold";
+  EXPECT_TRUE(journal_->received_since(0).empty());
+
+  EXPECT_EQ(receive(2), 1u);
+  after_durable([&acks] { ++acks; });
+  writer_->flush();
+  EXPECT_EQ(acks.load(), 1) << "a stored receipt is acknowledged again";
+  EXPECT_EQ(journal_->received_since(0).size(), 1u);
 }
 
 }  // namespace
