@@ -94,16 +94,26 @@ bool StreamReceiver::newer_than_all(const WireMessage& full, double now) const {
 void StreamReceiver::start_afresh(const WireMessage& full, int32_t d, double now, std::vector<ReceivedPosition>* out) {
   const uint32_t last_before = last_;
   const int64_t last_time_before = last_time_s_;
-  // Held messages numbered after it are the new count's when its number is
-  // ahead by more than its time allows (could_follow): one of the old
-  // count numbered after it would have been sampled after it. They follow
-  // on from it as usual. Past half a cycle that proof does not hold, and
-  // whatever is held is taken as the old count's.
+  // Held messages numbered after it are its own count's (they follow on
+  // from it as usual) when either proof holds:
+  // - its number is ahead by more than its time allows (could_follow): one
+  //   of the old count numbered after it would have been sampled after it;
+  // - they arrived after it was sampled: they were sent after it (a
+  //   resent full overtaken by its own deltas). The old count's messages
+  //   were all sent before its sender counted anew, so before this full.
+  //   (Times on both nodes' clocks; a receiver clock behind the sender's
+  //   only makes this proof fail, and those messages are dropped.)
+  // The second is what holds past half a cycle of silence, where the
+  // number no longer tells anything.
   std::map<uint32_t, Held> ahead;
   const bool new_count_ahead =
       d > 1 && since_last(full, now).value_or(INT64_MAX) < int64_t{d} * int64_t{config_.tau_s};
-  for (auto it = held_.begin(); new_count_ahead && it != held_.end();) {
-    if (sequence_distance(it->first, last_) > d) {
+  const int64_t sampled = full_time(full, now);
+  for (auto it = held_.begin(); it != held_.end();) {
+    const bool ours = new_count_ahead ? sequence_distance(it->first, last_) > d
+                                      : sequence_distance(it->first, full.sequence) > 0 &&
+                                            it->second.arrived >= static_cast<double>(sampled);
+    if (ours) {
       ahead.insert(held_.extract(it++));
     } else {
       ++it;

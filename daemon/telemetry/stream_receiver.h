@@ -17,8 +17,9 @@
 // full newer than the last position and than every held full starts the
 // stream afresh at once (its sender counts anew: restarted without its
 // state): held fulls from before it are delivered with the deltas that
-// follow each, the messages numbered after it are kept when its time
-// proves them its own count's, the rest is dropped (start_afresh). One not
+// follow each, the messages numbered after it are kept when its time, or
+// their arrival after it was sampled, proves them its own count's, the
+// rest is dropped (start_afresh). One not
 // newer is an old full resent late: dropped, never held, since consumed
 // after a gap timeout it would take the stream back to an old state.
 // Between the two bounds (at least d tau and less than 2048 tau later) a

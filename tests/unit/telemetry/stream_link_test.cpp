@@ -279,6 +279,38 @@ TEST(StreamLinkTest, SenderBackWithoutStateAfterHalfACycleOfSilenceIsFollowedAtO
   EXPECT_EQ(receiver.held(), 0u);
 }
 
+// Not a restart: one sender, its navigation out for 6 h (2160 tau, past
+// half a cycle), the last 5 messages before it lost for good, and the first
+// full after it lost once and resent after its first 3 deltas. Its own
+// deltas, heard after it was sampled, follow on from it: every position
+// after the silence arrives, at once, none is held.
+TEST(StreamLinkTest, AfterHalfACycleOfSilenceDeltasThatOvertookTheirFullFollowIt) {
+  TelemetryConfig config;
+  const std::vector<Sample> samples = track_samples(eval::TrackKind::kAuv, 31, 3 * 3600, config.tau_s);
+  ASSERT_GT(samples.size(), 140u);
+  std::vector<Sample> before(samples.begin(), samples.begin() + 100);
+  std::vector<Sample> after(samples.begin() + 100, samples.begin() + 140);
+  for (Sample& sample : after) sample.time_s += 6 * 3600;
+  after.front().new_segment = true;
+  StreamSender sender(config, 2, 1);
+  const std::vector<Sent> a = send_all(sender, before);
+  const std::vector<Sent> b = send_all(sender, after);
+  ASSERT_EQ(b.front().message.kind, MessageKind::kFull);
+  ASSERT_EQ(b[1].message.kind, MessageKind::kDelta);
+  StreamReceiver receiver(config, 2, 1800);
+  for (size_t i = 0; i + 5 < a.size(); ++i) receiver.receive(a[i].message, static_cast<double>(a[i].sample.time_s));
+  const double now = static_cast<double>(b[3].sample.time_s);
+  for (size_t i = 1; i <= 3; ++i) EXPECT_TRUE(receiver.receive(b[i].message, now).empty());
+  std::vector<ReceivedPosition> got = receiver.receive(b[0].message, now);
+  EXPECT_EQ(got.size(), 4u) << "the full and the 3 deltas that came before it";
+  for (size_t i = 4; i < b.size(); ++i) {
+    append(&got, receiver.receive(b[i].message, static_cast<double>(b[i].sample.time_s)));
+  }
+  expect_positions(got, b, config);
+  EXPECT_EQ(receiver.held(), 0u);
+  EXPECT_EQ(receiver.counters().out_of_step, 0u);
+}
+
 // The reverse risk: a full of the old count resent late (its ACK was lost)
 // after the receiver followed a restart. Its number reads as ahead of the
 // new count, its time as old: not a restart, and not held either (after
