@@ -182,8 +182,8 @@ void Daemon::build_link() {
       [this] {
         link::LinkOptions options = link::LinkOptions::from_config(config_.mac(), scheduler_->clock());
         options.scheduler = scheduler_.get();  // deadlines of driver-specific requests
-        // Daemon::stop flushes the writer after the link has stopped, so no
-        // commit callback outlives the core.
+        // Daemon::stop flushes the writer before the core goes, so no
+        // commit callback outlives it.
         options.after_receipt_durable =
             queue::durable_receipts(*journal_, [this](queue::Task task) { core_->post(std::move(task)); });
         return options;
@@ -265,6 +265,15 @@ void Daemon::stop() {
   gram_.environment.reset();
   scheduler_.reset();
   expiry_timer_.reset();
+  // Commit callbacks post to the core (received messages' ACKs): let any
+  // still queued run while it exists, stopped, so their tasks never run.
+  if (writer_ && writer_->running()) {
+    try {
+      writer_->flush();
+    } catch (const std::exception& e) {
+      spdlog::warn("store writer: a commit while stopping failed: {}", e.what());
+    }
+  }
   core_.reset();
   submitter_.reset();
   definitions_.reset();

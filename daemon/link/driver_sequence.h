@@ -80,6 +80,10 @@ class DriverSequence {
   };
 
   DriverSequence(Options options, Medium medium);
+  // Answers waiting for the store or the medium hold `this`: a copy or a
+  // move would leave them on the wrong object.
+  DriverSequence(const DriverSequence&) = delete;
+  DriverSequence& operator=(const DriverSequence&) = delete;
 
   // Begins reporting through `callbacks`; stop() clears them. Idempotent.
   void start(DriverCallbacks callbacks);

@@ -200,9 +200,6 @@ TEST_F(LinkControllerTest, ReceivedFramesAreSplitAndDeliveredWhenForUs) {
   EXPECT_EQ(link_->stats().messages_delivered, 2u);
 }
 
-// The fake driver's timing is driver.h's default (rate table + 10 %): at
-// rate 5 with an ACK and the 2000 m guard, one frame needs 4.74 s of the
-// slot, two 5.17 s.
 // The store's commit hook reaches the driver, which holds software ACKs
 // on it (link/driver_sequence.h).
 TEST_F(LinkControllerTest, TheDriverGetsTheHookThatSaysWhenReceiptsAreDurable) {
@@ -223,6 +220,9 @@ TEST_F(LinkControllerTest, TheDriverGetsTheHookThatSaysWhenReceiptsAreDurable) {
   EXPECT_TRUE(ran);
 }
 
+// The fake driver's timing is driver.h's default (rate table + 10 %): at
+// rate 5 with an ACK and the 2000 m guard, one frame needs 4.74 s of the
+// slot, two 5.17 s.
 TEST_F(LinkControllerTest, AsksTheQueuesOnlyForTheFramesThatFitTheSlot) {
   for (int v = 1; v <= 3; ++v) submit("dest: 2 value: " + std::to_string(v));
   mac_.timed_slot(5, 5.0, clock_.now_seconds());
