@@ -7,8 +7,8 @@
 
 #include "core/systemd_notify.h"
 #include "mac/mac_factory.h"
-#include "queue/durable_receipts.h"
 #include "message_definitions.h"
+#include "queue/durable_receipts.h"
 #include "service/position_message.h"
 #include "service/received_message.h"
 
