@@ -64,6 +64,9 @@ class Daemon {
   std::unique_ptr<store::Store> store_;
   std::unique_ptr<store::GroupCommitWriter> writer_;
   std::unique_ptr<queue::SqliteJournal> journal_;
+  // The journal's failed events the publishing of received messages has
+  // already logged (store writer thread only).
+  uint64_t publish_failures_seen_ = 0;
   std::unique_ptr<queue::EventLogReader> events_;
   std::unique_ptr<dccl::Codec> codec_;
   // Owned by the core thread once it runs.
