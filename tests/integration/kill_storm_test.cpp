@@ -17,13 +17,10 @@
 // subscriber is connected.
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -32,12 +29,12 @@
 #include <thread>
 
 #include "daemon_harness.h"
+#include "sim_network.h"
 #include "stream_subscriber.h"
 
 namespace acomms::testing {
 namespace {
 
-namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
 constexpr double kSlotSeconds = 4;
@@ -58,60 +55,23 @@ int seq_of(const v1::ReceivedMessage& message) {
 class KillStorm : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path("/tmp") / ("acomms-storm-" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    port_[kVehicle] = free_udp_port();
-    port_[kTopside] = free_udp_port();
-    for (int id : {kVehicle, kTopside}) write_config(id);
-    start(kVehicle);
-    start(kTopside);
-  }
-  void TearDown() override {
-    for (auto& [id, daemon] : daemons_) {
-      if (!daemon || !daemon->running()) continue;
-      daemon->signal(SIGCONT);
-      daemon->signal(SIGTERM);
-      EXPECT_EQ(daemon->wait(15s), std::optional<int>(0)) << name(id) << ":\n" << daemon->stderr_text();
+    for (int id : {kVehicle, kTopside}) {
+      // Acked (the default for unicast), kept until acked or 1800 s old,
+      // and never dropped for room: every acknowledged Submit must get through.
+      net_.write_config(id, {.sim = id == kVehicle ? "position { x: 300 }" : "position { x: 0 }",
+                             .rest = "queue {\n" +
+                                     SimNetwork::queue_type("example.Command", "max_queue: 100000 ttl_s: 1800") +
+                                     "}\n"});
     }
-    if (!HasFailure()) fs::remove_all(dir_);
+    net_.start(kVehicle);
+    net_.start(kTopside);
   }
-
-  static std::string name(int id) { return id == kVehicle ? "vehicle" : "topside"; }
-  std::string socket(int id) const { return (dir_ / (name(id) + ".sock")).string(); }
-
-  void write_config(int id) {
-    std::ofstream config(dir_ / (name(id) + ".conf"));
-    config << "data_dir: \"" << (dir_ / name(id)).string() << "\"\n"
-           << "grpc { unix_socket: \"" << socket(id) << "\" }\n"
-           << "dccl { proto_files: \"" << ACOMMS_SOURCE_DIR << "/examples/messages.proto\" }\n"
-           << "driver { name: \"sim\" modem_id: " << id << " sim { position { x: " << (id == kVehicle ? 300 : 0)
-           << " } listen: \"127.0.0.1:" << port_[id] << "\" peers: \"127.0.0.1:" << port_[3 - id] << "\" } }\n"
-           << "mac { name: \"fixed\" slot { src: 1 rate: 5 seconds: " << kSlotSeconds
-           << " } slot { src: 2 rate: 5 seconds: " << kSlotSeconds << " }"
-           // The nodes are 300 m apart: the default 2000 m travel guard would
-           // leave a 4 s slot no room for a packet and its ACK.
-           << " max_range_m: 400 }\n"
-           // Acked (the default for unicast), kept until acked or 1800 s
-           // old, and never dropped for room: every acknowledged Submit must
-           // get through.
-           << "queue {\n"
-           << "  type { type: \"example.Command\" policy { max_queue: 100000 ttl_s: 1800 }\n"
-           << "         roles { source_field: \"src\" destination_field: \"dest\" timestamp_field: \"time\" } }\n"
-           << "}\n";
-  }
-
-  void start(int id) {
-    daemons_[id] = std::make_unique<ChildProcess>(
-        ACOMMSD_BINARY, std::vector<std::string>{"--config", (dir_ / (name(id) + ".conf")).string()},
-        (dir_ / (name(id) + "-" + std::to_string(++starts_))).string());
-    ASSERT_TRUE(wait_serving(*daemons_[id], socket(id))) << daemons_[id]->stderr_text();
-  }
+  void TearDown() override { net_.stop(); }
 
   void kill(int id) {
-    daemons_[id]->signal(SIGKILL);
-    daemons_[id]->wait(10s);
-    ASSERT_EQ(daemons_[id]->exit_signal(), SIGKILL) << name(id) << " did not die by SIGKILL";
+    net_.daemon(id).signal(SIGKILL);
+    net_.daemon(id).wait(10s);
+    ASSERT_EQ(net_.daemon(id).exit_signal(), SIGKILL) << SimNetwork::name(id) << " did not die by SIGKILL";
   }
 
   // True once the topside has taken the Command with `seq` (Submit OK).
@@ -122,7 +82,7 @@ class KillStorm : public ::testing::Test {
     request.set_type("example.Command");
     request.set_json(R"({"dest": 1, "kind": "HOLD", "depth": 10, "seq": )" + std::to_string(seq) + "}");
     v1::SubmitResponse response;
-    return api(socket(kTopside))->Submit(&context, request, &response).ok();
+    return api(net_.socket(kTopside))->Submit(&context, request, &response).ok();
   }
 
   // Everything the vehicle's subscribers got, one per vehicle run.
@@ -135,16 +95,13 @@ class KillStorm : public ::testing::Test {
     return all;
   }
 
-  fs::path dir_;
-  std::map<int, int> port_;
-  std::map<int, std::unique_ptr<ChildProcess>> daemons_;
-  int starts_ = 0;
+  SimNetwork net_{"storm", kSlotSeconds};
   std::vector<std::unique_ptr<StreamSubscriber>> subscribers_;
 };
 
 TEST_F(KillStorm, EveryAcknowledgedCommandIsDeliveredExactlyOnceThroughRandomSigkills) {
   const int kills = kills_wanted();
-  subscribers_.push_back(std::make_unique<StreamSubscriber>(socket(kVehicle), "example.Command"));
+  subscribers_.push_back(std::make_unique<StreamSubscriber>(net_.socket(kVehicle), "example.Command"));
 
   // The operator: a new Command every 100 ms, each with its own seq.
   std::atomic<bool> operating{true};
@@ -173,14 +130,14 @@ TEST_F(KillStorm, EveryAcknowledgedCommandIsDeliveredExactlyOnceThroughRandomSig
     ++killed[victim];
     if (victim == kVehicle) {
       // Held so that nothing reaches the vehicle before its new subscriber.
-      daemons_[kTopside]->signal(SIGSTOP);
+      net_.daemon(kTopside).signal(SIGSTOP);
       kill(kVehicle);
-      start(kVehicle);
-      subscribers_.push_back(std::make_unique<StreamSubscriber>(socket(kVehicle), "example.Command"));
-      daemons_[kTopside]->signal(SIGCONT);
+      net_.start(kVehicle);
+      subscribers_.push_back(std::make_unique<StreamSubscriber>(net_.socket(kVehicle), "example.Command"));
+      net_.daemon(kTopside).signal(SIGCONT);
     } else {
       kill(kTopside);
-      start(kTopside);
+      net_.start(kTopside);
     }
   }
   const double storm_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - storm_began).count();
@@ -226,9 +183,9 @@ TEST_F(KillStorm, EveryAcknowledgedCommandIsDeliveredExactlyOnceThroughRandomSig
   RecordProperty("delivered_twice", static_cast<int>(twice.size()));
   EXPECT_GT(acknowledged.size(), static_cast<size_t>(kills)) << "the operator got too few Commands in";
   EXPECT_TRUE(lost.empty()) << lost.size() << " acknowledged Commands never delivered, first seq " << lost.front()
-                            << " (logs in " << dir_ << ")";
+                            << " (logs in " << net_.dir() << ")";
   EXPECT_TRUE(twice.empty()) << twice.size() << " Commands delivered twice, first seq " << twice.front()
-                             << " (logs in " << dir_ << ")";
+                             << " (logs in " << net_.dir() << ")";
 }
 
 }  // namespace

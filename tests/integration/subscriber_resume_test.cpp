@@ -26,6 +26,7 @@
 #include "daemon_harness.h"
 #include "queue/event_log_retention.h"
 #include "queue/sqlite_journal.h"
+#include "sim_network.h"
 #include "store/group_commit_writer.h"
 #include "store/store.h"
 
@@ -56,58 +57,26 @@ int64_t status_counter_of(const std::string& line) {
 class SubscriberResume : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path("/tmp") / ("acomms-resume-" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    port_[1] = free_udp_port();
-    port_[2] = free_udp_port();
-    for (int id : {1, 2}) write_config(id);
-    start(1);
-    start(2);
-  }
-  void TearDown() override {
-    for (auto& [id, daemon] : daemons_) {
-      if (!daemon || !daemon->running()) continue;
-      daemon->signal(SIGTERM);
-      EXPECT_EQ(daemon->wait(15s), std::optional<int>(0)) << name(id) << ":\n" << daemon->stderr_text();
+    for (int id : {1, 2}) {
+      net_.write_config(id, {.sim = id == 1 ? "position { x: 300 }" : "position { x: 0 }",
+                             .rest = "queue {\n" +
+                                     SimNetwork::queue_type("example.Status", "max_queue: 1000 ttl_s: 600") + "}\n"});
     }
-    fs::remove_all(dir_);
+    net_.start(1);
+    net_.start(2);
   }
+  void TearDown() override { net_.stop(); }
 
-  static std::string name(int id) { return id == 1 ? "vehicle" : "topside"; }
-  std::string socket(int id) const { return (dir_ / (name(id) + ".sock")).string(); }
-  std::string cursor_file() const { return (dir_ / "sub.cursor").string(); }
-
-  void write_config(int id) {
-    std::ofstream config(dir_ / (name(id) + ".conf"));
-    config << "data_dir: \"" << (dir_ / name(id)).string() << "\"\n"
-           << "grpc { unix_socket: \"" << socket(id) << "\" }\n"
-           << "dccl { proto_files: \"" << ACOMMS_SOURCE_DIR << "/examples/messages.proto\" }\n"
-           << "driver { name: \"sim\" modem_id: " << id << " sim { position { x: " << (id == 1 ? 300 : 0)
-           << " } listen: \"127.0.0.1:" << port_[id] << "\" peers: \"127.0.0.1:" << port_[3 - id] << "\" } }\n"
-           << "mac { name: \"fixed\" slot { src: 1 rate: 5 seconds: " << kSlotSeconds
-           << " } slot { src: 2 rate: 5 seconds: " << kSlotSeconds << " } max_range_m: 400 }\n"
-           << "queue {\n"
-           << "  type { type: \"example.Status\" policy { max_queue: 1000 ttl_s: 600 }\n"
-           << "         roles { source_field: \"src\" destination_field: \"dest\" timestamp_field: \"time\" } }\n"
-           << "}\n";
-  }
-
-  void start(int id) {
-    daemons_[id] = std::make_unique<ChildProcess>(
-        ACOMMSD_BINARY, std::vector<std::string>{"--config", (dir_ / (name(id) + ".conf")).string()},
-        (dir_ / (name(id) + std::to_string(++starts_))).string());
-    ASSERT_TRUE(wait_serving(*daemons_[id], socket(id))) << daemons_[id]->stderr_text();
-  }
+  std::string cursor_file() const { return (net_.dir() / "sub.cursor").string(); }
 
   // `acommsctl sub --resume FILE` on the topside, connected when this returns.
   std::unique_ptr<ChildProcess> start_subscriber(int n) {
-    std::set<uint64_t> before = unix_connections(socket(2));
+    std::set<uint64_t> before = unix_connections(net_.socket(2));
     auto sub = std::make_unique<ChildProcess>(
         ACOMMSCTL_BINARY,
-        std::vector<std::string>{"--socket", socket(2), "sub", "example.Status", "--resume", cursor_file()},
-        (dir_ / ("sub" + std::to_string(n))).string());
-    EXPECT_TRUE(wait_connected(*sub, socket(2), before)) << sub->stderr_text();
+        std::vector<std::string>{"--socket", net_.socket(2), "sub", "example.Status", "--resume", cursor_file()},
+        (net_.dir() / ("sub" + std::to_string(n))).string());
+    EXPECT_TRUE(wait_connected(*sub, net_.socket(2), before)) << sub->stderr_text();
     return sub;
   }
 
@@ -125,7 +94,7 @@ class SubscriberResume : public ::testing::Test {
     request.add_kinds("received");
     request.set_limit(10000);
     v1::EventsResponse response;
-    grpc::Status status = api(socket(2))->Events(&context, request, &response);
+    grpc::Status status = api(net_.socket(2))->Events(&context, request, &response);
     EXPECT_TRUE(status.ok()) << status.error_message();
     return response.events_size();
   }
@@ -135,14 +104,11 @@ class SubscriberResume : public ::testing::Test {
     v1::ListQueuedRequest request;
     request.set_type("example.Status");
     v1::ListQueuedResponse response;
-    EXPECT_TRUE(api(socket(1))->ListQueued(&context, request, &response).ok());
+    EXPECT_TRUE(api(net_.socket(1))->ListQueued(&context, request, &response).ok());
     return response.messages_size();
   }
 
-  fs::path dir_;
-  std::map<int, int> port_;
-  std::map<int, std::unique_ptr<ChildProcess>> daemons_;
-  int starts_ = 0;
+  SimNetwork net_{"resume", kSlotSeconds};
 };
 
 TEST_F(SubscriberResume, KilledSubscriberThenKilledDaemonMissNothingAndRepeatNothing) {
@@ -154,7 +120,7 @@ TEST_F(SubscriberResume, KilledSubscriberThenKilledDaemonMissNothingAndRepeatNot
       request.set_type("example.Status");
       request.set_json(R"({"dest": 2, "x": 1500, "y": 0, "depth": 30, "seq": )" + std::to_string(counter) + "}");
       v1::SubmitResponse response;
-      (void)api(socket(1))->Submit(&context, request, &response);
+      (void)api(net_.socket(1))->Submit(&context, request, &response);
       std::this_thread::sleep_for(1s);
     }
   });
@@ -182,11 +148,11 @@ TEST_F(SubscriberResume, KilledSubscriberThenKilledDaemonMissNothingAndRepeatNot
   // 2. The second goes on from the cursor; then the topside dies under it.
   auto second = start_subscriber(2);
   ASSERT_TRUE(wait_until([&] { return lines(*second).size() >= 4; }, kWait)) << second->stderr_text();
-  daemons_[2]->signal(SIGKILL);
-  daemons_[2]->wait(10s);
+  net_.daemon(2).signal(SIGKILL);
+  net_.daemon(2).wait(10s);
   EXPECT_TRUE(second->wait(20s).has_value()) << "the subscriber outlived its daemon's stream";
   for (const std::string& line : lines(*second)) printed.push_back(line);
-  start(2);
+  net_.start(2);
 
   // 3. The third goes on from the cursor, past the restart.
   auto third = start_subscriber(3);
@@ -197,7 +163,7 @@ TEST_F(SubscriberResume, KilledSubscriberThenKilledDaemonMissNothingAndRepeatNot
         return got.size() >= 4 && field_of(got.back(), "seq") > before_third + 3;
       },
       kWait))
-      << third->stderr_text() << daemons_[2]->stderr_text();
+      << third->stderr_text() << net_.daemon(2).stderr_text();
   autonomy_running = false;
   autonomy.join();
   // Once the vehicle's queue is empty nothing more arrives: the count is final.

@@ -13,24 +13,24 @@
 // subscribers saw the positions as acomms.telemetry.Position.
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 
 #include "daemon_harness.h"
+#include "sim_network.h"
 #include "stream_subscriber.h"
 
 namespace acomms::testing {
 namespace {
 
-namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
+// A 2.5 s slot at rate 5 carries one 256-byte frame, about 36 messages: a
+// minute of track takes two of the vehicle's slots, so each kill lands with
+// part of it still queued.
 constexpr double kSlotSeconds = 2.5;
 constexpr int kMinute = 60;
 
@@ -58,56 +58,24 @@ Point track_at(double s) {
 class TelemetryTwoNode : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path("/tmp") / ("acomms-telemetry-" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    port_[1] = free_udp_port();
-    port_[2] = free_udp_port();
-    for (int id : {1, 2}) write_config(id);
-    start(1);
-    start(2);
+    for (int id : {1, 2}) {
+      // No periodic full within the test: every full is the start's or a restart's.
+      net_.write_config(id, {.sim = "loss_probability: 0.25 seed: " + std::to_string(40 + id),
+                             .rest = std::string("telemetry { tau_s: 1 full_every: 1000 ttl_s: 600") +
+                                     (id == 1 ? " receiver: 2" : "") + " }\n",
+                             .example_messages = false});
+    }
+    net_.start(1);
+    net_.start(2);
     // Sample times on the whole second, today (a full codes the time of day).
     t0_ = std::floor(std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
   }
-  void TearDown() override {
-    for (auto& [id, daemon] : daemons_) {
-      if (!daemon || !daemon->running()) continue;
-      daemon->signal(SIGTERM);
-      EXPECT_EQ(daemon->wait(15s), std::optional<int>(0)) << name(id) << ":\n" << daemon->stderr_text();
-    }
-    fs::remove_all(dir_);
-  }
-
-  static std::string name(int id) { return id == 1 ? "vehicle" : "topside"; }
-  std::string socket(int id) const { return (dir_ / (name(id) + ".sock")).string(); }
-
-  void write_config(int id) {
-    std::ofstream config(dir_ / (name(id) + ".conf"));
-    config << "data_dir: \"" << (dir_ / name(id)).string() << "\"\n"
-           << "grpc { unix_socket: \"" << socket(id) << "\" }\n"
-           << "driver { name: \"sim\" modem_id: " << id << " sim { loss_probability: 0.25 seed: " << 40 + id
-           << " listen: \"127.0.0.1:" << port_[id] << "\" peers: \"127.0.0.1:" << port_[3 - id] << "\" } }\n"
-           // A 2.5 s slot at rate 5 carries one 256-byte frame, about 36
-           // messages: a minute of track takes two of the vehicle's slots,
-           // so each kill lands with part of it still queued.
-           << "mac { name: \"fixed\" slot { src: 1 rate: 5 seconds: " << kSlotSeconds
-           << " } slot { src: 2 rate: 5 seconds: " << kSlotSeconds << " } max_range_m: 400 }\n"
-           // No periodic full within the test: every full is the start's or a restart's.
-           << "telemetry { tau_s: 1 full_every: 1000 ttl_s: 600"
-           << (id == 1 ? " receiver: 2" : "") << " }\n";
-  }
-
-  void start(int id) {
-    daemons_[id] = std::make_unique<ChildProcess>(
-        ACOMMSD_BINARY, std::vector<std::string>{"--config", (dir_ / (name(id) + ".conf")).string()},
-        dir_.string());
-    ASSERT_TRUE(wait_serving(*daemons_[id], socket(id))) << daemons_[id]->stderr_text();
-  }
+  void TearDown() override { net_.stop(); }
 
   void kill9_and_restart(int id) {
-    daemons_[id]->signal(SIGKILL);
-    daemons_[id]->wait(10s);
-    start(id);
+    net_.daemon(id).signal(SIGKILL);
+    net_.daemon(id).wait(10s);
+    net_.start(id);
   }
 
   // Fixes every 0.5 s for s in [from, to].
@@ -122,7 +90,7 @@ class TelemetryTwoNode : public ::testing::Test {
     csv.precision(12);
     csv << "time,x,y,depth\n";
     for (const auto& [t, p] : fixes(from, to)) csv << t << ',' << p.x << ',' << p.y << ',' << p.depth << '\n';
-    RunResult result = run_with_input(ACOMMSCTL_BINARY, {"--socket", socket(1), "nav"}, (dir_ / "nav").string(),
+    RunResult result = run_with_input(ACOMMSCTL_BINARY, {"--socket", net_.socket(1), "nav"}, (net_.dir() / "nav").string(),
                                       csv.str());
     ASSERT_EQ(result.exit_code, 0) << result.err;
     EXPECT_NE(result.out.find(std::to_string(to - from + 1) + " telemetry messages queued"), std::string::npos)
@@ -132,7 +100,7 @@ class TelemetryTwoNode : public ::testing::Test {
   void feed_with_api(int from, int to) {
     grpc::ClientContext context;
     v1::SubmitNavigationResponse response;
-    auto stub = api(socket(1));
+    auto stub = api(net_.socket(1));
     auto writer = stub->SubmitNavigation(&context, &response);
     for (const auto& [t, p] : fixes(from, to)) {
       v1::NavigationFix fix;
@@ -153,7 +121,7 @@ class TelemetryTwoNode : public ::testing::Test {
     v1::TrackRequest request;
     request.set_src(1);
     v1::TrackResponse response;
-    grpc::Status status = api(socket(2))->Track(&context, request, &response);
+    grpc::Status status = api(net_.socket(2))->Track(&context, request, &response);
     EXPECT_TRUE(status.ok()) << status.error_message();
     return response;
   }
@@ -162,19 +130,17 @@ class TelemetryTwoNode : public ::testing::Test {
     return wait_until([&] { return track().positions_size() >= positions; }, timeout, 200ms);
   }
 
-  fs::path dir_;
-  std::map<int, int> port_;
-  std::map<int, std::unique_ptr<ChildProcess>> daemons_;
+  SimNetwork net_{"telemetry", kSlotSeconds};
   double t0_ = 0;
 };
 
 TEST_F(TelemetryTwoNode, TrackIsCompleteInOrderAndExactThroughLossAndKillsOfEachEnd) {
   {
-    StreamSubscriber positions(socket(2), "acomms.telemetry.Position");
+    StreamSubscriber positions(net_.socket(2), "acomms.telemetry.Position");
     // 1. A minute through acommsctl nav.
     feed_with_acommsctl(0, kMinute);
     // Mid-stream: some of it is across, some still queued at the vehicle.
-    ASSERT_TRUE(wait_for_track(10, 60s)) << daemons_[1]->stderr_text() << daemons_[2]->stderr_text();
+    ASSERT_TRUE(wait_for_track(10, 60s)) << net_.daemon(1).stderr_text() << net_.daemon(2).stderr_text();
     ASSERT_TRUE(positions.wait_for([](const auto& got) { return !got.empty(); }, 10s));
     const v1::ReceivedMessage first = positions.received().front();
     EXPECT_EQ(first.src(), 1);
@@ -188,14 +154,14 @@ TEST_F(TelemetryTwoNode, TrackIsCompleteInOrderAndExactThroughLossAndKillsOfEach
   RecordProperty("positions_at_vehicle_kill", track().positions_size());
   kill9_and_restart(1);
   feed_with_api(kMinute + 1, 2 * kMinute);
-  ASSERT_TRUE(wait_for_track(kMinute + 20, 90s)) << daemons_[1]->stderr_text();
+  ASSERT_TRUE(wait_for_track(kMinute + 20, 90s)) << net_.daemon(1).stderr_text();
   // 3. SIGKILL the topside with the stream in flight.
   RecordProperty("positions_at_topside_kill", track().positions_size());
   kill9_and_restart(2);
   feed_with_api(2 * kMinute + 1, 3 * kMinute);
   const int all = 3 * kMinute + 1;
   ASSERT_TRUE(wait_for_track(all, 120s)) << "topside has " << track().positions_size() << " of " << all << "\n"
-                                         << daemons_[2]->stderr_text();
+                                         << net_.daemon(2).stderr_text();
 
   const v1::TrackResponse got = track();
   ASSERT_EQ(got.positions_size(), all);
@@ -218,7 +184,7 @@ TEST_F(TelemetryTwoNode, TrackIsCompleteInOrderAndExactThroughLossAndKillsOfEach
   RecordProperty("fulls", fulls);
 
   // acommsctl track prints the same track.
-  RunResult csv = run(ACOMMSCTL_BINARY, {"--socket", socket(2), "track", "1", "--csv"}, (dir_ / "track").string());
+  RunResult csv = run(ACOMMSCTL_BINARY, {"--socket", net_.socket(2), "track", "1", "--csv"}, (net_.dir() / "track").string());
   ASSERT_EQ(csv.exit_code, 0) << csv.err;
   std::vector<std::string> lines = lines_of(csv.out);
   ASSERT_EQ(lines.size(), static_cast<size_t>(all + 1));

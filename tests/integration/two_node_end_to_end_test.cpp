@@ -11,24 +11,21 @@
 //     sees none twice (retransmissions are recognised).
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <mutex>
 #include <set>
 #include <thread>
 
 #include "daemon_harness.h"
+#include "sim_network.h"
 #include "stream_subscriber.h"
 
 namespace acomms::testing {
 namespace {
 
-namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
 constexpr double kSlotSeconds = 3;
@@ -45,53 +42,15 @@ int seq_of(const v1::ReceivedMessage& message) {
 class TwoNode : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path("/tmp") / ("acomms-e2e-" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    port_[1] = free_udp_port();
-    port_[2] = free_udp_port();
-    for (int id : {1, 2}) write_config(id);
-    start(1);
-    start(2);
-  }
-  void TearDown() override {
-    for (auto& [id, daemon] : daemons_) {
-      if (!daemon || !daemon->running()) continue;
-      daemon->signal(SIGTERM);
-      EXPECT_EQ(daemon->wait(15s), std::optional<int>(0)) << name(id) << ":\n" << daemon->stderr_text();
+    for (int id : {1, 2}) {
+      net_.write_config(id, {.sim = id == 1 ? "position { x: 300 }" : "position { x: 0 }",
+                             .rest = "queue {\n" + SimNetwork::queue_type("example.Status", "max_queue: 1000 ttl_s: 600") +
+                                     SimNetwork::queue_type("example.Command", "value_base: 5") + "}\n"});
     }
-    fs::remove_all(dir_);
+    net_.start(1);
+    net_.start(2);
   }
-
-  static std::string name(int id) { return id == 1 ? "vehicle" : "topside"; }
-  std::string socket(int id) const { return (dir_ / (name(id) + ".sock")).string(); }
-
-  void write_config(int id) {
-    std::ofstream config(dir_ / (name(id) + ".conf"));
-    config << "data_dir: \"" << (dir_ / name(id)).string() << "\"\n"
-           << "grpc { unix_socket: \"" << socket(id) << "\" }\n"
-           << "dccl { proto_files: \"" << ACOMMS_SOURCE_DIR << "/examples/messages.proto\" }\n"
-           << "driver { name: \"sim\" modem_id: " << id << " sim { position { x: " << (id == 1 ? 300 : 0)
-           << " } listen: \"127.0.0.1:" << port_[id] << "\" peers: \"127.0.0.1:" << port_[3 - id] << "\" } }\n"
-           << "mac { name: \"fixed\" slot { src: 1 rate: 5 seconds: " << kSlotSeconds
-           << " } slot { src: 2 rate: 5 seconds: " << kSlotSeconds << " }"
-           // 300 m apart: with the default 2000 m guard a 3 s slot at rate 5
-           // could not carry one frame and its ACK (link/slot_budget.h).
-           << " max_range_m: 400 }\n"
-           << "queue {\n"
-           << "  type { type: \"example.Status\" policy { max_queue: 1000 ttl_s: 600 }\n"
-           << "         roles { source_field: \"src\" destination_field: \"dest\" timestamp_field: \"time\" } }\n"
-           << "  type { type: \"example.Command\" policy { value_base: 5 }\n"
-           << "         roles { source_field: \"src\" destination_field: \"dest\" timestamp_field: \"time\" } }\n"
-           << "}\n";
-  }
-
-  void start(int id) {
-    daemons_[id] = std::make_unique<ChildProcess>(
-        ACOMMSD_BINARY, std::vector<std::string>{"--config", (dir_ / (name(id) + ".conf")).string()},
-        dir_.string());
-    ASSERT_TRUE(wait_serving(*daemons_[id], socket(id))) << daemons_[id]->stderr_text();
-  }
+  void TearDown() override { net_.stop(); }
 
   int64_t submit(int id, const std::string& type, const std::string& json) {
     grpc::ClientContext context;
@@ -99,7 +58,7 @@ class TwoNode : public ::testing::Test {
     request.set_type(type);
     request.set_json(json);
     v1::SubmitResponse response;
-    grpc::Status status = api(socket(id))->Submit(&context, request, &response);
+    grpc::Status status = api(net_.socket(id))->Submit(&context, request, &response);
     EXPECT_TRUE(status.ok()) << status.error_message();
     return status.ok() ? response.message_id() : -1;
   }
@@ -109,7 +68,7 @@ class TwoNode : public ::testing::Test {
     v1::ListQueuedRequest request;
     request.set_type(type);
     v1::ListQueuedResponse response;
-    EXPECT_TRUE(api(socket(id))->ListQueued(&context, request, &response).ok());
+    EXPECT_TRUE(api(net_.socket(id))->ListQueued(&context, request, &response).ok());
     return response;
   }
 
@@ -118,27 +77,25 @@ class TwoNode : public ::testing::Test {
     v1::EventsRequest request;
     request.set_message_id(message_id);
     v1::EventsResponse response;
-    EXPECT_TRUE(api(socket(id))->Events(&context, request, &response).ok());
+    EXPECT_TRUE(api(net_.socket(id))->Events(&context, request, &response).ok());
     std::vector<std::string> kinds;
     for (const auto& event : response.events()) kinds.push_back(event.kind());
     return kinds;
   }
 
-  fs::path dir_;
-  std::map<int, int> port_;
-  std::map<int, std::unique_ptr<ChildProcess>> daemons_;
+  SimNetwork net_{"e2e", kSlotSeconds};
 };
 
 TEST_F(TwoNode, CommandStatusAndVehicleCrash) {
-  Subscriber topside_status(socket(2), "example.Status");
+  Subscriber topside_status(net_.socket(2), "example.Status");
 
   // 1. A command with ACK, topside to vehicle.
   {
-    Subscriber vehicle_commands(socket(1), "example.Command");
+    Subscriber vehicle_commands(net_.socket(1), "example.Command");
     int64_t id = submit(2, "example.Command", R"({"dest": 1, "kind": "GOTO", "x": 200, "y": -50, "depth": 30, "seq": 7})");
     ASSERT_GT(id, 0);
     ASSERT_TRUE(vehicle_commands.wait_for([](const auto& got) { return !got.empty(); }, 20s))
-        << daemons_[1]->stderr_text();
+        << net_.daemon(1).stderr_text();
     const v1::ReceivedMessage command = vehicle_commands.received().front();
     EXPECT_EQ(command.src(), 2);
     EXPECT_EQ(command.dest(), 1);
@@ -190,7 +147,7 @@ TEST_F(TwoNode, CommandStatusAndVehicleCrash) {
   autonomy_running = false;
   autonomy.join();
   EXPECT_TRUE(four_in_a_row) << "statuses heard in " << cycles_heard(topside_status.received()).size()
-                             << " cycles\n" << daemons_[1]->stderr_text();
+                             << " cycles\n" << net_.daemon(1).stderr_text();
 
   // 3. Queue a burst and SIGKILL the vehicle at once: the burst is in its
   // store only. (Statuses ask for an ACK: the queue's default for unicast.)
@@ -202,9 +159,9 @@ TEST_F(TwoNode, CommandStatusAndVehicleCrash) {
     }
   }
   EXPECT_GT(queued(1, "example.Status").messages_size(), 0);
-  daemons_[1]->signal(SIGKILL);
-  ASSERT_TRUE(daemons_[1]->wait(10s).has_value() || daemons_[1]->exit_signal() == SIGKILL);
-  start(1);
+  net_.daemon(1).signal(SIGKILL);
+  ASSERT_TRUE(net_.daemon(1).wait(10s).has_value() || net_.daemon(1).exit_signal() == SIGKILL);
+  net_.start(1);
 
   bool all_delivered = topside_status.wait_for(
       [&](const auto& got) {
@@ -228,7 +185,7 @@ TEST_F(TwoNode, CommandStatusAndVehicleCrash) {
   EXPECT_TRUE(all_delivered);
   EXPECT_TRUE(missing.empty()) << missing.size() << " of " << confirmed.size() << " confirmed statuses missing, first "
                                << (missing.empty() ? 0 : missing.front()) << "\n"
-                               << daemons_[1]->stderr_text();
+                               << net_.daemon(1).stderr_text();
   EXPECT_TRUE(twice.empty()) << twice.size() << " statuses delivered twice, first " << (twice.empty() ? 0 : twice.front());
   // And the ACKs clear the vehicle's queue.
   auto drained = std::chrono::steady_clock::now() + std::chrono::seconds(static_cast<int>(3 * kCycleSeconds));
@@ -236,7 +193,7 @@ TEST_F(TwoNode, CommandStatusAndVehicleCrash) {
     std::this_thread::sleep_for(200ms);
   }
   v1::ListQueuedResponse left = queued(1, "example.Status");
-  EXPECT_EQ(left.messages_size(), 0) << left.DebugString() << daemons_[1]->stderr_text();
+  EXPECT_EQ(left.messages_size(), 0) << left.DebugString() << net_.daemon(1).stderr_text();
   if (left.messages_size() > 0) {
     for (const auto& k : event_kinds(1, left.messages(0).message_id())) std::cerr << k << " ";
   }
