@@ -13,85 +13,46 @@
 #include <grpcpp/grpcpp.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <chrono>
-#include <condition_variable>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
-#include <vector>
 
 #include "acomms/v1/gram.grpc.pb.h"
 #include "child_process.h"
+#include "closed_loop.h"
 #include "daemon_harness.h"
 #include "gram/bellhop_import.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
-struct Figures {
-  double per_second, p50_ms, p99_ms;
-  int failed;
-};
+using acomms::bench::ClosedLoopFigures;
 
-Figures drive(acomms::v1::Gram::Stub& stub, double source_depth, unsigned workers, bool cached, int requests) {
-  const int in_flight = static_cast<int>(2 * workers);
-  std::mutex m;
-  std::condition_variable cv;
-  std::vector<double> latency_ms;
-  int submitted = 0, answered = 0, failed = 0;
+ClosedLoopFigures drive(acomms::v1::Gram::Stub& stub, double source_depth, unsigned workers, bool cached,
+                        int requests) {
   struct Call {
     grpc::ClientContext context;
     acomms::v1::TransmissionLossRequest request;
     acomms::v1::TransmissionLossReply reply;
-    Clock::time_point start;
   };
-  auto submit = [&] {
+  std::once_flag first_failure;
+  auto issue = [&](int index, std::function<void(bool)> done) {
     auto* call = new Call;
     call->request.mutable_header()->mutable_environment()->set_source_depth_m(
-        cached ? source_depth : source_depth + 1e-6 * (submitted + 1));
+        cached ? source_depth : source_depth + 1e-6 * (index + 1));
     call->context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
-    call->start = Clock::now();
-    ++submitted;
-    stub.async()->TransmissionLoss(&call->context, &call->request, &call->reply, [&, call](grpc::Status s) {
-      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - call->start).count();
+    stub.async()->TransmissionLoss(&call->context, &call->request, &call->reply, [&, call, done](grpc::Status s) {
       delete call;
-      std::lock_guard lock(m);
-      latency_ms.push_back(ms);
-      if (!s.ok()) {
-        if (failed++ == 0) std::fprintf(stderr, "%s\n", s.error_message().c_str());
-      }
-      ++answered;
-      cv.notify_all();
+      if (!s.ok()) std::call_once(first_failure, [&] { std::fprintf(stderr, "%s\n", s.error_message().c_str()); });
+      done(s.ok());
     });
   };
-  if (cached) {  // warm: the one request, answered once by the model
-    submit();
-    std::unique_lock lock(m);
-    cv.wait(lock, [&] { return answered == 1; });
-    submitted = answered = 0;
-    latency_ms.clear();
-  }
-  const auto start = Clock::now();
-  std::unique_lock lock(m);
-  while (answered < requests) {
-    while (submitted < requests && submitted - answered < in_flight) {
-      lock.unlock();  // gRPC may run the callback on this thread
-      submit();
-      lock.lock();
-    }
-    cv.wait(lock, [&] { return answered == requests || (submitted < requests && submitted - answered < in_flight); });
-  }
-  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  std::sort(latency_ms.begin(), latency_ms.end());
-  auto at = [&](double q) {
-    return latency_ms[std::min(latency_ms.size() - 1, static_cast<std::size_t>(q * latency_ms.size()))];
-  };
-  return {requests / seconds, at(0.5), at(0.99), failed};
+  if (cached) acomms::bench::run_closed_loop(1, 1, issue);  // warm: the one request, answered once by the model
+  return acomms::bench::run_closed_loop(requests, static_cast<int>(2 * workers), issue);
 }
 
 }  // namespace
@@ -131,7 +92,7 @@ int main(int argc, char** argv) {
     auto stub = acomms::v1::Gram::NewStub(grpc::CreateChannel("unix:" + socket, grpc::InsecureChannelCredentials()));
     for (bool cached : {false, true}) {
       const int n = smoke ? 10 : (cached ? requests * 10 : requests);
-      const Figures f = drive(*stub, env.source_depth_m(), workers, cached, n);
+      const ClosedLoopFigures f = drive(*stub, env.source_depth_m(), workers, cached, n);
       std::printf("bench_munk_query via gRPC  %u worker(s)  %-6s  %6d requests  %9.1f requests/s  p50 %7.3f ms  "
                   "p99 %7.3f ms%s\n",
                   workers, cached ? "cached" : "cold", n, f.per_second, f.p50_ms, f.p99_ms, f.failed ? "  FAILED" : "");
