@@ -8,7 +8,6 @@
 #include "core/systemd_notify.h"
 #include "mac/mac_factory.h"
 #include "message_definitions.h"
-#include "queue/durable_receipts.h"
 #include "service/position_message.h"
 #include "service/received_message.h"
 
@@ -54,6 +53,7 @@ void Daemon::start() {
   // From here on only the writer's thread touches the store's connection.
   writer_ = std::make_unique<store::GroupCommitWriter>(store_->db());
   journal_ = std::make_unique<queue::SqliteJournal>(*writer_);
+  publish_when_stored_ = queue::when_stored(*journal_);
   events_ = std::make_unique<queue::EventLogReader>(store_->db().path());
   codec_ = make_codec(config_.dccl());
   // Before the queues restore: messages of these types are in the journal.
@@ -171,15 +171,11 @@ void Daemon::build_link() {
         // order, so messages are published in seq order, from the store
         // writer's thread.
         auto received = std::make_shared<const v1::ReceivedMessage>(service::to_received_message(message, from));
-        journal_->when_committed([this, received](std::exception_ptr error) {
-          // "Done" is not "stored": an event of an earlier batch may have
-          // failed (queue/message_journal.h); the count says so.
-          const uint64_t failed = journal_->events_not_stored();
-          if (error || failed != publish_failures_seen_) {
+        publish_when_stored_([this, received](std::exception_ptr error) {
+          if (error) {
             spdlog::error("received message {} (seq {}) may not be stored; passed on anyway", received->type(),
                           received->seq());
           }
-          publish_failures_seen_ = failed;
           subscribers_.publish(*received);
         });
       },

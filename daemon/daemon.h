@@ -18,6 +18,7 @@
 #include "link/raw_log.h"
 #include "mac/mac.h"
 #include "dccl/codec.h"
+#include "queue/durable_receipts.h"
 #include "queue/queue_manager.h"
 #include "queue/event_log_reader.h"
 #include "queue/event_log_retention.h"
@@ -64,9 +65,9 @@ class Daemon {
   std::unique_ptr<store::Store> store_;
   std::unique_ptr<store::GroupCommitWriter> writer_;
   std::unique_ptr<queue::SqliteJournal> journal_;
-  // The journal's failed events the publishing of received messages has
-  // already logged (store writer thread only).
-  uint64_t publish_failures_seen_ = 0;
+  // Received messages are published through this (queue/durable_receipts.h):
+  // their own chain, apart from the ACKs'.
+  queue::WhenStored publish_when_stored_;
   std::unique_ptr<queue::EventLogReader> events_;
   std::unique_ptr<dccl::Codec> codec_;
   // Owned by the core thread once it runs.

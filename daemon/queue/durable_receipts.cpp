@@ -6,6 +6,8 @@
 #include <memory>
 #include <string>
 
+#include "store/store_error.h"
+
 namespace acomms::queue {
 
 namespace {
@@ -16,22 +18,33 @@ void not_stored(const std::string& why) {
 
 }  // namespace
 
-AfterReceiptsDurable durable_receipts(MessageJournal& journal, PostToCore post) {
-  // Failures the previous request already answered for. Touched only in the
-  // commit callbacks, which run one at a time, in order.
+WhenStored when_stored(MessageJournal& journal) {
+  // Failures the chain's previous call already answered for. Touched only
+  // in the commit callbacks, which run one at a time, in order.
   auto answered = std::make_shared<uint64_t>(journal.events_not_stored());
-  return [&journal, post = std::move(post), answered](Task then) {
+  return [&journal, answered](MessageJournal::Committed committed) {
+    // Commits complete in order: once this empty request is done, every
+    // event recorded before it is done too, stored or failed. A failure in
+    // its own batch fails this request; one in an earlier batch only shows
+    // in the journal's count.
+    journal.when_committed([&journal, answered, committed = std::move(committed)](std::exception_ptr error) {
+      const uint64_t failed = journal.events_not_stored();
+      const uint64_t newly_failed = failed - *answered;
+      *answered = failed;
+      if (!error && newly_failed > 0) {
+        error = std::make_exception_ptr(
+            store::StoreError(std::to_string(newly_failed) + " event(s) recorded before it failed to commit"));
+      }
+      committed(error);
+    });
+  };
+}
+
+AfterReceiptsDurable durable_receipts(MessageJournal& journal, PostToCore post) {
+  return [stored = when_stored(journal), post = std::move(post)](Task then) {
     try {
-      // Commits complete in order: once this empty request is done, every
-      // event recorded before it is done too, stored or failed. A failure
-      // in its own batch fails this request; one in an earlier batch only
-      // shows in the journal's count.
-      journal.when_committed([&journal, post, then = std::move(then), answered](std::exception_ptr error) {
-        const uint64_t failed = journal.events_not_stored();
-        const uint64_t newly_failed = failed - *answered;
-        *answered = failed;
-        if (!error && newly_failed == 0) return post(then);
-        if (!error) return not_stored(std::to_string(newly_failed) + " event(s) recorded before it failed to commit");
+      stored([post, then = std::move(then)](std::exception_ptr error) {
+        if (!error) return post(then);
         try {
           std::rethrow_exception(error);
         } catch (const std::exception& e) {

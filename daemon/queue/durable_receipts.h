@@ -26,4 +26,13 @@ using AfterReceiptsDurable = std::function<void(Task then)>;
 // from the journal's commit thread.
 AfterReceiptsDurable durable_receipts(MessageJournal& journal, PostToCore post);
 
+// The check under it, for any caller that must know its events are stored,
+// not only done: like journal.when_committed(committed), but `committed`
+// also gets an error when an event recorded since this chain's previous
+// call failed in an earlier batch (MessageJournal::events_not_stored).
+// Each use keeps a chain of its own, or one would answer for another's
+// failures. Its calls' callbacks run in order on the journal's thread.
+using WhenStored = std::function<void(MessageJournal::Committed committed)>;
+WhenStored when_stored(MessageJournal& journal);
+
 }  // namespace acomms::queue
