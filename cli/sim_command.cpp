@@ -9,6 +9,8 @@
 
 #include "comma_list.h"
 #include "global_options.h"
+#include "eval/discovery_monte_carlo.h"
+#include "eval/discovery_report.h"
 #include "eval/discovery_simulation.h"
 #include "eval/market_simulation.h"
 #include "mac/blank_slot.h"

@@ -1,19 +1,22 @@
+// One discovery scenario, slot by slot: the real AutoDiscoveryMac of every
+// node on one SimulatedScheduler and SimulatedChannel, observed at each
+// slot's start (what every node does) and end (what was sent, heard and
+// learnt), until the network has shared one cycle long enough that it
+// cannot break, or the horizon passes. The definitions it measures are in
+// discovery_simulation.h; the text of a run is discovery_report.cpp's.
 #include "eval/discovery_simulation.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <iomanip>
 #include <memory>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "core/scheduler.h"
 #include "eval/simulated_channel.h"
 #include "mac/auto_discovery_mac.h"
 #include "mac/cycle_grid.h"
-#include "util/splitmix64.h"
 
 namespace acomms::eval {
 namespace {
@@ -21,14 +24,11 @@ namespace {
 using mac::AutoDiscoveryConfig;
 using mac::AutoDiscoveryMac;
 using mac::BlankRule;
-using mac::blank_rule_name;
 using mac::Nanoseconds;
 using time_point = core::Clock::time_point;
-using util::SplitMix64;
 
 // The simulated day: 2024-06-01T00:00:00Z.
 constexpr int64_t kDayStart = 1717200000;
-constexpr int32_t kMaxModemId = 127;
 
 time_point at_seconds(double seconds_since_midnight) {
   // Milliseconds, as the issue's start times are; integer arithmetic, as a
@@ -222,241 +222,6 @@ DiscoveryResult simulate_discovery(const DiscoveryScenario& scenario, bool keep_
   result.transmissions = transmissions;
   result.collided_transmissions = collided;
   return result;
-}
-
-namespace {
-
-std::string number(double value) {
-  std::ostringstream out;
-  out << std::setprecision(12) << value;
-  return out.str();
-}
-
-std::string clock_time(double seconds) {
-  double day = std::fmod(seconds, 86400.0);
-  if (day < 0) day += 86400;
-  const int64_t whole = static_cast<int64_t>(std::floor(day));
-  char text[32];
-  std::snprintf(text, sizeof text, "%02lld:%02lld:%02lld", static_cast<long long>(whole / 3600),
-                static_cast<long long>(whole / 60 % 60), static_cast<long long>(whole % 60));
-  std::string out = text;
-  const double fraction = day - static_cast<double>(whole);
-  if (fraction > 5e-4) {
-    std::snprintf(text, sizeof text, "%.3f", fraction);
-    out += text + 1;  // ".xyz"
-  }
-  return out;
-}
-
-std::string id_list(const std::vector<int32_t>& ids, const char* separator) {
-  std::string out;
-  for (size_t i = 0; i < ids.size(); ++i) {
-    if (i) out += separator;
-    out += std::to_string(ids[i]);
-  }
-  return out;
-}
-
-std::string cycle_text(const std::vector<int32_t>& cycle) {
-  std::string out = "[";
-  for (size_t i = 0; i < cycle.size(); ++i) {
-    if (i) out += ' ';
-    out += cycle[i] == 0 ? std::string("_") : std::to_string(cycle[i]);
-  }
-  return out + "]";
-}
-
-const char* action_name(NodeAction action) {
-  switch (action) {
-    case NodeAction::kOff: return "off";
-    case NodeAction::kWait: return "wait";
-    case NodeAction::kSend: return "send";
-    case NodeAction::kBlank: return "blank";
-    case NodeAction::kListen: return "listen";
-  }
-  return "?";
-}
-
-std::string cell(const NodeSlot& node) {
-  std::string out = action_name(node.action);
-  if (node.cycle_start) {
-    out += ' ';
-    out += cycle_text(node.cycle);
-  }
-  for (int32_t id : node.expired) {
-    out += " -";
-    out += std::to_string(id);
-  }
-  for (int32_t id : node.discovered) {
-    out += " +";
-    out += std::to_string(id);
-  }
-  return out;
-}
-
-std::string channel_cell(const SlotTrace& slot) {
-  if (slot.transmitters.empty()) return "-";
-  if (slot.transmitters.size() == 1) return "tx " + id_list(slot.transmitters, ",");
-  std::string out = "COLLISION " + id_list(slot.transmitters, ",");
-  if (!slot.lost.empty()) out += " (lost by " + id_list(slot.lost, ",") + ")";
-  return out;
-}
-
-}  // namespace
-
-std::string format_discovery(const DiscoveryScenario& scenario, const DiscoveryResult& result) {
-  std::ostringstream out;
-  out << "# mac-discovery: ids " << id_list(scenario.ids, ",") << "; slot " << number(scenario.slot_seconds)
-      << " s; coolness " << scenario.coolness << "; p_collide " << number(scenario.p_collide)
-      << "; expire_cycles " << scenario.expire_cycles << "; blank rule "
-      << blank_rule_name(scenario.blank_rule) << "; seed " << scenario.seed << "\n";
-  out << "# power-on (s since midnight UTC):";
-  for (size_t i = 0; i < scenario.ids.size(); ++i)
-    out << " " << scenario.ids[i] << "@"
-        << number(scenario.start_s.size() == 1 ? scenario.start_s[0] : scenario.start_s[i]);
-  out << "\n# send: own slot; blank: listening in the blank; listen: another known node's slot;\n"
-         "# wait: silent until its next cycle boundary; off: not powered on yet.\n"
-         "# [..]: the cycle a node starts here (_ = blank); +N: discovered N; -N: expired N.\n";
-
-  std::vector<std::string> header = {"time_s", "utc"};
-  for (int32_t id : scenario.ids) header.push_back("node " + std::to_string(id));
-  header.push_back("channel");
-  std::vector<std::vector<std::string>> rows;
-  for (const SlotTrace& slot : result.trace) {
-    std::vector<std::string> row = {number(slot.time_s), clock_time(slot.time_s)};
-    for (const NodeSlot& node : slot.nodes) row.push_back(cell(node));
-    row.push_back(channel_cell(slot));
-    rows.push_back(std::move(row));
-  }
-  std::vector<size_t> width(header.size());
-  for (size_t c = 0; c < header.size(); ++c) {
-    width[c] = header[c].size();
-    for (const auto& row : rows) width[c] = std::max(width[c], row[c].size());
-  }
-  auto print = [&](const std::vector<std::string>& row) {
-    std::string line;
-    for (size_t c = 0; c < row.size(); ++c) {
-      line += row[c];
-      if (c + 1 < row.size()) line += std::string(width[c] - row[c].size() + 2, ' ');
-    }
-    out << line << "\n";
-  };
-  print(header);
-  for (const auto& row : rows) print(row);
-
-  if (result.converged_at_s) {
-    const double after = *result.converged_at_s - result.last_start_s;
-    out << "# converged: one shared collision-free cycle of " << number(result.cycle_seconds)
-        << " s from " << number(*result.converged_at_s) << " s (" << clock_time(*result.converged_at_s)
-        << "), " << number(after) << " s = " << std::fixed << std::setprecision(2)
-        << after / result.cycle_seconds << std::defaultfloat
-        << " cycles after the last power-on\n";
-    out << "converged_at_s=" << number(*result.converged_at_s);
-  } else {
-    out << "# never converged within " << number(scenario.horizon_cycles)
-        << " full-network cycles after the last power-on\n";
-    out << "converged_at_s=never";
-  }
-  out << " collisions=" << result.collisions << "\n";
-  return out.str();
-}
-
-namespace {
-
-struct Network {
-  std::vector<int32_t> ids;
-  std::vector<double> start_s;
-  uint64_t channel_seed = 0;
-};
-
-Network draw_network(const DiscoveryMonteCarloConfig& config, int nodes, int trial) {
-  SplitMix64 random(config.seed * 0x100000001b3ULL ^ (static_cast<uint64_t>(nodes) << 40) ^
-                    static_cast<uint64_t>(trial));
-  random.next();
-  Network network;
-  std::set<int32_t> ids;
-  while (static_cast<int>(ids.size()) < nodes)
-    ids.insert(1 + static_cast<int32_t>(random.below(kMaxModemId)));
-  network.ids.assign(ids.begin(), ids.end());
-  // Shuffled, so that power-on order is not id order.
-  for (size_t i = network.ids.size(); i > 1; --i)
-    std::swap(network.ids[i - 1], network.ids[random.below(i)]);
-  const double cycle = config.slot_seconds * (nodes + 1);
-  const double window = config.start_window_cycles * cycle;
-  const double room = 86400 - window - (config.horizon_cycles + 3) * cycle;
-  const double base = room > 0 ? std::floor(random.uniform() * room) : 0;
-  for (int i = 0; i < nodes; ++i)
-    network.start_s.push_back(base + std::round(random.uniform() * window * 1e3) / 1e3);
-  network.channel_seed = random.next();
-  return network;
-}
-
-}  // namespace
-
-std::vector<DiscoveryPoint> simulate_discovery_monte_carlo(const DiscoveryMonteCarloConfig& config) {
-  if (config.trials < 1) throw std::invalid_argument("--trials must be >= 1");
-  for (int nodes : config.sizes)
-    if (nodes < 1 || nodes > kMaxModemId)
-      throw std::invalid_argument("--sizes: a network has 1 to 127 nodes");
-  std::vector<DiscoveryPoint> points;
-  for (int nodes : config.sizes) {
-    std::vector<Network> networks;
-    for (int j = 0; j < config.trials; ++j) networks.push_back(draw_network(config, nodes, j));
-    for (uint32_t coolness_choice : config.coolness) {
-      const uint32_t coolness = coolness_choice == 0 ? static_cast<uint32_t>(nodes + 1) : coolness_choice;
-      for (double p_collide : config.p_collide) {
-        int64_t transmissions = 0, collided = 0, converged = 0;
-        double slots_total = 0;
-        for (const Network& network : networks) {
-          DiscoveryScenario scenario;
-          scenario.ids = network.ids;
-          scenario.start_s = network.start_s;
-          scenario.slot_seconds = config.slot_seconds;
-          scenario.coolness = coolness;
-          scenario.expire_cycles = config.expire_cycles;
-          scenario.blank_rule = config.blank_rule;
-          scenario.p_collide = p_collide;
-          scenario.seed = network.channel_seed;
-          scenario.horizon_cycles = config.horizon_cycles;
-          DiscoveryResult result = simulate_discovery(scenario, false);
-          transmissions += result.transmissions;
-          collided += result.collided_transmissions;
-          if (result.converged_at_s) {
-            ++converged;
-            slots_total += (*result.converged_at_s - result.last_start_s) / config.slot_seconds;
-          }
-        }
-        DiscoveryPoint point;
-        point.nodes = nodes;
-        point.coolness = coolness;
-        point.p_collide = p_collide;
-        point.collision_prob =
-            transmissions ? static_cast<double>(collided) / static_cast<double>(transmissions) : 0;
-        point.mean_discovery_slots =
-            converged ? slots_total / static_cast<double>(converged) : std::nan("");
-        point.fail_pct = 100.0 * static_cast<double>(config.trials - converged) / config.trials;
-        points.push_back(point);
-      }
-    }
-  }
-  return points;
-}
-
-std::string format_discovery_csv(const std::vector<DiscoveryPoint>& points) {
-  std::ostringstream out;
-  out << "nodes,coolness,p_collide,collision_prob,mean_discovery_slots,fail_pct\n";
-  char line[160];
-  for (const DiscoveryPoint& p : points) {
-    std::string slots = std::isnan(p.mean_discovery_slots) ? std::string("nan") : [&] {
-      char text[32];
-      std::snprintf(text, sizeof text, "%.2f", p.mean_discovery_slots);
-      return std::string(text);
-    }();
-    std::snprintf(line, sizeof line, "%d,%u,%s,%.4f,%s,%.2f\n", p.nodes, p.coolness,
-                  number(p.p_collide).c_str(), p.collision_prob, slots.c_str(), p.fail_pct);
-    out << line;
-  }
-  return out.str();
 }
 
 }  // namespace acomms::eval

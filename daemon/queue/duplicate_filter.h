@@ -8,15 +8,15 @@
 // is taken as a retransmission and not delivered again. Messages that are
 // meant to repeat identical content within the window must differ in some
 // field (most carry a time), or the window must be shortened (0 turns the
-// filter off). The filter itself lives in memory; the QueueManager keeps
-// one per type, with the type's window (queue_manager.h: at least as long
+// filter off). The filter itself lives in memory; the ReceiveFilter keeps
+// one per type, with the type's window (receive_filter.h: at least as long
 // as the type's ttl, so that a sender's last resend still falls inside it),
 // and fills it again at start-up from the received events in the event log.
 //
 // Memory is bounded by a capacity: past it the oldest entry is forgotten,
 // even one still inside its window. Such early forgetting is counted
 // (forgotten_early), because a resend of that message would then be passed
-// on again; the QueueManager logs it.
+// on again; the ReceiveFilter logs it.
 
 #include <cstdint>
 #include <deque>

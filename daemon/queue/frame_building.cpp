@@ -86,7 +86,8 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
   // back into the contest: this is its next opportunity.
   for (auto& [id, state] : by_id_) {
     state.queue->release_in_flight([&](const QueuedMessage& m) {
-      emit(QueueEventKind::kRetry, state, m.record, now, m.in_flight_frame, "not acknowledged", false);
+      emit(state, now, {.kind = QueueEventKind::kRetry, .message = m.record, .frame_id = m.in_flight_frame,
+                        .detail = "not acknowledged"});
     });
   }
   in_flight_.clear();
@@ -108,8 +109,8 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
       frame.bytes += next.encoded;
       frame.message_ids.push_back(next.record.id);
       frame.ack_requested = frame.ack_requested || awaits_ack;
-      emit(QueueEventKind::kSent, *winner, next.record, now, frame.frame_id, awaits_ack ? "awaiting ack" : "",
-           !awaits_ack);
+      emit(*winner, now, {.kind = QueueEventKind::kSent, .message = next.record, .frame_id = frame.frame_id,
+                          .detail = awaits_ack ? "awaiting ack" : "", .removes_message = !awaits_ack});
       if (awaits_ack) {
         auto& types = in_flight_[frame.frame_id];
         if (types.empty() || types.back() != winner) types.push_back(winner);
@@ -134,7 +135,8 @@ void QueueManager::on_ack(uint64_t frame_id) {
   std::set<TypeState*> types(it->second.begin(), it->second.end());
   for (TypeState* state : types) {
     for (const QueuedMessage& m : state->queue->take_acked(frame_id)) {
-      emit(QueueEventKind::kAcked, *state, m.record, now, frame_id, "", true);
+      emit(*state, now, {.kind = QueueEventKind::kAcked, .message = m.record, .frame_id = frame_id,
+                         .removes_message = true});
     }
   }
   in_flight_.erase(it);

@@ -1,14 +1,12 @@
 // The queues themselves: made per loaded type, brought back from the
 // journal at start-up, fed by the steps of a submit, and emptied by expiry,
 // Cancel and Flush, each change counted and logged as an event. Frame
-// building and the receive side have files of their own.
+// building, the receive side and its filter have files of their own.
 #include "queue/queue_manager.h"
 
 #include <google/protobuf/descriptor.h>
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
-#include <cmath>
 #include <set>
 
 #include "core/core_thread.h"
@@ -43,14 +41,7 @@ QueueManager::QueueManager(const dccl::Codec& codec, const v1::QueueConfig& conf
       // Frame ids only need to be unique; starting from the clock keeps them
       // unique across restarts too, so the event log never reuses one.
       next_frame_id_(static_cast<uint64_t>(clock.now_seconds() * 1e6)),
-      duplicate_window_s_(config.has_duplicate_window_s() ? config.duplicate_window_s() : 300),
-      clock_skew_s_(config.has_clock_skew_s() ? config.clock_skew_s() : 60) {
-  if (!(config.duplicate_window_s() >= 0) || !std::isfinite(config.duplicate_window_s())) {
-    throw std::invalid_argument("queue.duplicate_window_s must be 0 (off) or a positive number of seconds");
-  }
-  if (!(clock_skew_s_ >= 0) || !std::isfinite(clock_skew_s_)) {
-    throw std::invalid_argument("queue.clock_skew_s must be 0 or a positive number of seconds");
-  }
+      receive_filter_(config) {
   std::set<std::string> configured;
   for (const auto& entry : config.type()) {
     if (!configured.insert(entry.type()).second) {
@@ -78,20 +69,15 @@ std::vector<std::string> QueueManager::add_types() {
     state.roles = std::move(roles);
     // A type may keep out of the filter: it drops repeats itself.
     const bool filtered = entry == nullptr || !entry->has_duplicate_filter() || entry->duplicate_filter();
-    if (duplicate_window_s_ > 0 && filtered) {
-      // Never shorter than the ttl: the sender resends until then.
-      state.window_s = std::max(duplicate_window_s_, policy.ttl_s);
-      state.filter.emplace(state.window_s + (state.roles.has_timestamp() ? 2 * clock_skew_s_ : 0));
-    }
+    if (filtered) state.window_s = receive_filter_.add_type(info->name, policy.ttl_s, state.roles);
     by_name_[info->name] = &state;
     added.push_back(info->name);
   }
   return added;
 }
 
-void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMessage& record, double now,
-                        uint64_t frame_id, const char* detail, bool removes, bool journaled,
-                        std::string_view encoded, std::optional<std::string_view> link_figures) {
+void QueueManager::emit(TypeState& state, double now, const Change& change) {
+  const QueueEventKind kind = change.kind;
   QueueStats& s = state.stats;
   switch (kind) {
     case QueueEventKind::kQueued: ++s.queued; break;
@@ -106,14 +92,14 @@ void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMess
   event.kind = kind;
   event.time = now;
   event.type = state.queue->type();
-  event.message_id = record.id;
-  event.frame_id = frame_id;
-  event.src = record.src;
-  event.dest = record.dest;
-  event.detail = detail;
-  event.removes_message = removes;
-  event.encoded = encoded;
-  if (link_figures) event.link_figures.emplace(*link_figures);
+  event.message_id = change.message.id;
+  event.frame_id = change.frame_id;
+  event.src = change.message.src;
+  event.dest = change.message.dest;
+  event.detail = change.detail;
+  event.removes_message = change.removes_message;
+  event.encoded = change.encoded;
+  if (change.link_figures) event.link_figures.emplace(*change.link_figures);
   // Numbered here, on the core thread, so numbers follow the order messages
   // are passed on; the journal makes each durable with its event.
   if (kind == QueueEventKind::kReceived) event.seq = ++last_received_seq_;
@@ -123,10 +109,10 @@ void QueueManager::emit(QueueEventKind kind, TypeState& state, const JournalMess
                    : spdlog::level::debug;
   if (spdlog::should_log(level)) {
     spdlog::log(level, "queue {}: message {} {}{}{}", event.type, event.message_id, to_string(kind),
-                frame_id ? " (frame " + std::to_string(frame_id) + ")" : "",
+                change.frame_id ? " (frame " + std::to_string(change.frame_id) + ")" : "",
                 event.detail.empty() ? "" : ": " + event.detail);
   }
-  if (!journaled) journal_.record(event);
+  if (!change.already_journaled) journal_.record(event);
 }
 
 void QueueManager::restore() {
@@ -169,44 +155,29 @@ void QueueManager::restore() {
       message.encoded = codec_.encode(*decoded);
     } catch (const std::exception& e) {
       spdlog::warn("queue {}: stored message {} cannot be re-encoded: {}", record.type, record.id, e.what());
-      emit(QueueEventKind::kDropped, state, record, now, 0, "cannot re-encode", true);
+      emit(state, now, {.kind = QueueEventKind::kDropped, .message = record, .detail = "cannot re-encode",
+                        .removes_message = true});
       continue;
     }
     std::optional<QueuedMessage> dropped;
     if (!state.queue->push(std::move(message), &dropped)) {
-      emit(QueueEventKind::kDropped, state, record, now, 0, "queue full at restore", true);
+      emit(state, now, {.kind = QueueEventKind::kDropped, .message = record, .detail = "queue full at restore",
+                        .removes_message = true});
       continue;
     }
-    if (dropped) emit(QueueEventKind::kDropped, state, dropped->record, now, 0, "queue full: oldest dropped", true);
+    if (dropped) {
+      emit(state, now, {.kind = QueueEventKind::kDropped, .message = dropped->record,
+                        .detail = "queue full: oldest dropped", .removes_message = true});
+    }
     ++restored;
   }
   spdlog::info("queue: {} message{} restored from the store", restored, restored == 1 ? "" : "s");
-
-  // A sender whose ACK was lost while this node was down sends again; what
-  // was passed on before the restart must still count as seen.
-  const double longest = duplicate_window_s();
-  if (longest > 0) {
-    size_t remembered = 0;
-    for (const QueueEvent& event : journal_.received_since(now - longest)) {
-      auto it = by_name_.find(event.type);
-      if (it == by_name_.end() || !it->second->filter) continue;
-      DuplicateFilter& filter = *it->second->filter;
-      if (event.time < now - filter.window_s()) continue;
-      filter.remember(event.src, event.encoded, event.time);
-      ++remembered;
-    }
-    spdlog::info("queue: {} message{} received in the last {} s remembered, so that retransmissions of them "
-                 "are not passed on again", remembered, remembered == 1 ? "" : "s", longest);
-  }
+  receive_filter_.refill(journal_, now);
 }
 
 double QueueManager::duplicate_window_s() const {
   ACOMMS_ASSERT_CORE_THREAD();
-  double longest = 0;
-  for (const auto& [id, state] : by_id_) {
-    if (state.filter) longest = std::max(longest, state.filter->window_s());
-  }
-  return longest;
+  return receive_filter_.longest_window_s();
 }
 
 double QueueManager::duplicate_window(const std::string& type) const {
@@ -272,12 +243,16 @@ bool QueueManager::accept(QueuedMessage message) {
   std::optional<QueuedMessage> dropped;
   JournalMessage record = message.record;
   if (!state.queue->push(std::move(message), &dropped)) {
-    emit(QueueEventKind::kDropped, state, record, now, 0, "queue full: new message refused", true);
+    emit(state, now, {.kind = QueueEventKind::kDropped, .message = record,
+                      .detail = "queue full: new message refused", .removes_message = true});
     return false;
   }
   // The journal logged "queued" with the message itself: count it only.
-  emit(QueueEventKind::kQueued, state, record, now, 0, "", false, /*journaled=*/true);
-  if (dropped) emit(QueueEventKind::kDropped, state, dropped->record, now, 0, "queue full: oldest dropped", true);
+  emit(state, now, {.kind = QueueEventKind::kQueued, .message = record, .already_journaled = true});
+  if (dropped) {
+    emit(state, now, {.kind = QueueEventKind::kDropped, .message = dropped->record,
+                      .detail = "queue full: oldest dropped", .removes_message = true});
+  }
   return true;
 }
 
@@ -286,7 +261,8 @@ void QueueManager::expire() {
   double now = clock_.now_seconds();
   for (auto& [id, state] : by_id_) {
     for (const QueuedMessage& m : state.queue->take_expired(now)) {
-      emit(QueueEventKind::kExpired, state, m.record, now, 0, "ttl passed", true);
+      emit(state, now, {.kind = QueueEventKind::kExpired, .message = m.record, .detail = "ttl passed",
+                        .removes_message = true});
     }
   }
 }
@@ -296,7 +272,8 @@ bool QueueManager::cancel(int64_t id, const std::string& reason) {
   double now = clock_.now_seconds();
   for (auto& [dccl_id, state] : by_id_) {
     if (std::optional<QueuedMessage> taken = state.queue->take(id)) {
-      emit(QueueEventKind::kDropped, state, taken->record, now, 0, reason.c_str(), true);
+      emit(state, now, {.kind = QueueEventKind::kDropped, .message = taken->record, .detail = reason,
+                        .removes_message = true});
       return true;
     }
   }
@@ -313,7 +290,8 @@ size_t QueueManager::flush(const std::string& type, const std::string& reason) {
   double now = clock_.now_seconds();
   for (int64_t id : ids) {
     if (std::optional<QueuedMessage> taken = state.queue->take(id)) {
-      emit(QueueEventKind::kDropped, state, taken->record, now, 0, reason.c_str(), true);
+      emit(state, now, {.kind = QueueEventKind::kDropped, .message = taken->record, .detail = reason,
+                        .removes_message = true});
     }
   }
   return ids.size();

@@ -13,19 +13,10 @@
 // One class, one file per idea: queue_manager.cpp makes the queues, brings
 // them back at start-up and holds the steps of a submit, expiry, Cancel and
 // Flush; frame_building.cpp the contest, build_frames and on_ack;
-// frame_receiving.cpp receive (unstitch, decode, filter).
-//
-// Delivered at most once, for as long as the sender may resend: an
-// acknowledged message whose ACK is lost (or whose sender restarts before
-// the ACK is in) is sent again until it is acked or its ttl passes. Each
-// type therefore remembers what it received for its window, W = the longer
-// of queue.duplicate_window_s and the type's ttl_s, and a Submit ttl_s
-// longer than W is refused, so a resend always falls inside the window of a
-// receiver with the same queue config. Types with a timestamp role also
-// refuse as stale a message stamped more than W + clock_skew_s ago (a
-// sender whose ttl is longer than ours, or a message the filter had to
-// forget), and remember for W + 2 * clock_skew_s so that the two rules
-// meet: a resend the filter no longer holds is older than the stale bound.
+// frame_receiving.cpp receive (unstitch, decode). What is received is
+// passed on at most once: the rule, and the windows it needs, are the
+// ReceiveFilter's (receive_filter.h); a Submit whose ttl_s is longer than
+// its type's window is refused here.
 
 #include <google/protobuf/message.h>
 
@@ -44,25 +35,15 @@
 #include "acomms/v1/config.pb.h"
 #include "core/clock.h"
 #include "dccl/codec.h"
-#include "queue/duplicate_filter.h"
 #include "queue/frame.h"
 #include "queue/message_journal.h"
 #include "queue/queue.h"
 #include "queue/queue_stats.h"
+#include "queue/receive_filter.h"
+#include "queue/received_message.h"
 #include "queue/roles.h"
 
 namespace acomms::queue {
-
-// A message taken off the link and passed on to subscribers.
-struct ReceivedMessage {
-  std::string type;
-  std::unique_ptr<google::protobuf::Message> message;
-  std::string encoded;  // its DCCL bytes, as received
-  int64_t seq = 0;      // its received sequence number (QueueEvent::seq)
-  int32_t src = -1;   // from the source role, else the transmission's source
-  int32_t dest = 0;
-  double time = 0;    // when it was received
-};
 
 // Submit failed because the type is not a loaded DCCL type.
 class UnknownTypeError : public std::invalid_argument {
@@ -140,10 +121,10 @@ class QueueManager {
   QueueStats stats(const std::string& type) const;
   uint64_t malformed_frames() const { return malformed_frames_; }
   // Received messages recognised as retransmissions and not passed on.
-  uint64_t duplicates() const { return duplicates_; }
+  uint64_t duplicates() const { return receive_filter_.duplicates(); }
   // Received messages refused as stale: stamped longer ago than their
   // type's window (plus the clock skew allowed).
-  uint64_t stale_refused() const { return stale_refused_; }
+  uint64_t stale_refused() const { return receive_filter_.stale_refused(); }
   // The type's duplicate window W in seconds (0: off); Submit refuses a
   // ttl_s above it. Throws UnknownTypeError.
   double duplicate_window(const std::string& type) const;
@@ -184,20 +165,10 @@ class QueueManager {
     QueueStats stats;  // core thread
     // Counted by journal_new, on any thread.
     mutable std::atomic<uint64_t> refused{0};
-    // W (0: off), set when the queue is made; prepare_new reads it on any
-    // thread to bound a Submit's ttl.
+    // W (0: off), as the ReceiveFilter gave it when the queue was made;
+    // prepare_new reads it on any thread to bound a Submit's ttl.
     double window_s = 0;
-    // The receive side (frame_receiving.cpp), core thread: the filter
-    // remembers for W, or W + 2 * clock skew when the type has a timestamp
-    // role.
-    std::optional<DuplicateFilter> filter;
-    uint64_t stale_in_burst = 0;      // stale refusals since the last fresh message
-    uint64_t forgotten_early_logged = 0;
   };
-
-  // The receive side's steps for one decoded message (frame_receiving.cpp).
-  bool refuse_if_stale(TypeState& state, const ReceivedMessage& received, double now);
-  bool drop_if_duplicate(TypeState& state, const ReceivedMessage& received, double now);
 
   // journal_new's checks and encoding: the message as it will be queued,
   // not yet journaled (id 0).
@@ -206,12 +177,20 @@ class QueueManager {
   struct Contender;
   std::vector<Contender> contenders(double now);
   TypeState* contest(std::vector<Contender>& field, double now, size_t room, int32_t dest);
-  // Counts, logs and journals an event (`journaled`: the journal already has
-  // it; `encoded` and `link_figures`: a received message's bytes and the
-  // figures of its transmission).
-  void emit(QueueEventKind kind, TypeState& state, const JournalMessage& message, double now,
-            uint64_t frame_id, const char* detail, bool removes, bool journaled = false,
-            std::string_view encoded = {}, std::optional<std::string_view> link_figures = std::nullopt);
+  // One change of a message's fate, as emit() takes it; callers name the
+  // fields they set (designated initializers), the rest keep these values.
+  struct Change {
+    QueueEventKind kind;
+    const JournalMessage& message;
+    uint64_t frame_id = 0;              // kSent, kAcked, kRetry: the frame
+    std::string_view detail = {};       // why, for the log and the event
+    bool removes_message = false;       // QueueEvent::removes_message
+    bool already_journaled = false;     // the journal has the event: count and log only
+    std::string_view encoded = {};      // kReceived: the message's bytes
+    std::optional<std::string_view> link_figures = std::nullopt;  // kReceived: its transmission's
+  };
+  // Counts, logs and journals `change` to a message of `state`'s type, at `now`.
+  void emit(TypeState& state, double now, const Change& change);
 
   const dccl::Codec& codec_;
   v1::QueueConfig config_;
@@ -226,10 +205,7 @@ class QueueManager {
   std::unordered_map<uint64_t, std::vector<TypeState*>> in_flight_;
   uint64_t next_frame_id_;
   uint64_t malformed_frames_ = 0;
-  double duplicate_window_s_;  // queue.duplicate_window_s (0: off)
-  double clock_skew_s_;        // queue.clock_skew_s
-  uint64_t duplicates_ = 0;
-  uint64_t stale_refused_ = 0;
+  ReceiveFilter receive_filter_;  // core thread
   int64_t last_received_seq_ = 0;
 };
 

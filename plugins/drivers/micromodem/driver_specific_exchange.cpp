@@ -1,3 +1,9 @@
+// The exchange of a driver-specific request, once checked
+// (driver_specific_request.cpp): its command, the waits bounded by the spec's
+// timeouts and the caller's deadline, and the answers that end it. Every
+// callback from the command queue or the scheduler names the exchange it
+// belongs to (Current::id), so a late one from a finished exchange is
+// ignored instead of ending the next.
 #include "micromodem/driver_specific_exchange.h"
 
 #include <spdlog/spdlog.h>
@@ -6,6 +12,7 @@
 #include <cmath>
 
 #include "core/core_thread.h"
+#include "micromodem/driver_specific_request.h"
 #include "micromodem/nmea/cycle_sentences.h"
 
 namespace acomms::drivers::micromodem {
@@ -22,9 +29,6 @@ namespace {
 constexpr uint8_t kFdpData = 0xFD;  // first byte of FDP data from this driver
 constexpr uint8_t kFdpPadded = 0xFE;  // the same, one zero byte of padding at the end
 constexpr uint8_t kFdpAck = 0xFA;   // first byte of its software acknowledgement
-constexpr int kFdpHeader = 2;       // marker + sequence number
-constexpr uint32_t kMaxLblTimeoutMs = 60'000;
-const std::string kLetters = "ABCD";
 
 using std::chrono::milliseconds;
 using Duration = std::chrono::system_clock::duration;
@@ -32,12 +36,6 @@ using Duration = std::chrono::system_clock::duration;
 Duration seconds(double s) {
   return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(s));
 }
-
-DriverSpecificResult invalid(const ModemTransmission& r, std::string why) {
-  return link::driver_specific_error(DriverSpecificStatus::kInvalidArgument, std::move(why), r);
-}
-
-bool is_address(int64_t id) { return id >= 0 && id <= nmea::kMaxAddress; }
 
 constexpr double kMiniAir = 0.7;     // §3.1: 0.5-0.7 s
 constexpr double kTurnaround = 0.5;  // §9: ~0.5-1 s
@@ -55,111 +53,8 @@ Duration DriverSpecificExchange::scaled(Duration modem_time) const {
   return std::chrono::duration_cast<Duration>(modem_time / settings_.time_scale);
 }
 
-DriverSpecificResult DriverSpecificExchange::check(const ModemTransmission& r) const {
-  if (!r.HasExtension(drivers::micromodem_transmission)) {
-    return link::driver_specific_error(
-        DriverSpecificStatus::kUnimplemented,
-        "does not support the driver-specific request " + link::describe_driver_specific(r) +
-            " (it takes acomms.drivers.micromodem_transmission: ping, LBL, mini-packet, FDP)",
-        r);
-  }
-  const Kind& ask = r.GetExtension(drivers::micromodem_transmission);
-  int64_t own = settings_.own_id;
-  auto needs_dest = [&](bool broadcast_ok) -> std::string {
-    if (!is_address(r.dest()) || r.dest() == own || (!broadcast_ok && r.dest() == 0)) {
-      return "transmission.dest " + std::to_string(r.dest()) + " must be another modem's address (" +
-             (broadcast_ok ? "0 = everyone, " : "") + "1..127, not this modem's " + std::to_string(own) + ")";
-    }
-    return "";
-  };
-  switch (ask.kind()) {
-    case Kind::PING:
-      if (auto why = needs_dest(false); !why.empty()) return invalid(r, why);
-      break;
-    case Kind::NARROWBAND_LBL: {
-      const auto& lbl = ask.narrowband_lbl();
-      if (lbl.reply_frequency_hz_size() < 1 || lbl.reply_frequency_hz_size() > nmea::kTransponders) {
-        return invalid(r, "micromodem.narrowband_lbl.reply_frequency_hz has " +
-                              std::to_string(lbl.reply_frequency_hz_size()) + " entries: give 1..4 (transponders A..D)");
-      }
-      for (uint32_t hz : lbl.reply_frequency_hz()) {
-        if (hz == 0 || hz > 1'000'000) return invalid(r, "micromodem.narrowband_lbl.reply_frequency_hz " + std::to_string(hz) + " is outside 1..1000000 Hz");
-      }
-      if (lbl.transmit_frequency_hz() == 0 || lbl.transmit_frequency_hz() > 1'000'000) {
-        return invalid(r, "micromodem.narrowband_lbl.transmit_frequency_hz is outside 1..1000000 Hz");
-      }
-      if (lbl.timeout_ms() == 0 || lbl.timeout_ms() > kMaxLblTimeoutMs) {
-        return invalid(r, "micromodem.narrowband_lbl.timeout_ms " + std::to_string(lbl.timeout_ms()) + " is outside 1..60000");
-      }
-      if (lbl.transmit_ms() > 1000 || lbl.receive_ms() > 1000 || lbl.turnaround_ms() > 10'000) {
-        return invalid(r, "micromodem.narrowband_lbl: transmit_ms and receive_ms are at most 1000, turnaround_ms 10000");
-      }
-      break;
-    }
-    case Kind::REMUS_LBL: {
-      const auto& lbl = ask.remus_lbl();
-      if (lbl.group() != 1) return invalid(r, "micromodem.remus_lbl.group must be 1 (the only group)");
-      if (lbl.channel() < 1 || lbl.channel() > 4) return invalid(r, "micromodem.remus_lbl.channel " + std::to_string(lbl.channel()) + " is outside 1..4");
-      if (lbl.beacons().empty() || lbl.beacons().size() > 4 ||
-          lbl.beacons().find_first_not_of(kLetters) != std::string::npos) {
-        return invalid(r, "micromodem.remus_lbl.beacons \"" + lbl.beacons() + "\" must be letters among ABCD");
-      }
-      if (lbl.timeout_ms() == 0 || lbl.timeout_ms() > kMaxLblTimeoutMs) {
-        return invalid(r, "micromodem.remus_lbl.timeout_ms " + std::to_string(lbl.timeout_ms()) + " is outside 1..60000");
-      }
-      if (lbl.pps_timeout() > 1'000'000) return invalid(r, "micromodem.remus_lbl.pps_timeout is outside 0..1000000");
-      break;
-    }
-    case Kind::MINI_PACKET:
-      if (auto why = needs_dest(true); !why.empty()) return invalid(r, why);
-      if (!ask.has_mini_packet_value() || ask.mini_packet_value() > nmea::kMaxMiniPacketValue) {
-        return invalid(r, "micromodem.mini_packet_value " +
-                              (ask.has_mini_packet_value() ? std::to_string(ask.mini_packet_value()) : "(unset)") +
-                              " is outside 0..8191 (13 bits)");
-      }
-      break;
-    case Kind::FDP: {
-      auto generation = hooks_.generation ? hooks_.generation() : std::nullopt;
-      if (generation && *generation == nmea::ModemGeneration::kMM1) {
-        return link::driver_specific_error(DriverSpecificStatus::kFailedPrecondition,
-                                           "cannot send FDP: this modem is a Micro-Modem 1, and the flexible data "
-                                           "protocol ($CCTDP) needs a Micro-Modem 2",
-                                           r);
-      }
-      if (!generation) {
-        return link::driver_specific_error(DriverSpecificStatus::kFailedPrecondition,
-                                           "cannot send FDP yet: the modem's revision (MM1 or MM2) is not known", r);
-      }
-      if (!settings_.fdp_configured) {
-        return link::driver_specific_error(
-            DriverSpecificStatus::kFailedPrecondition,
-            "FDP is not configured: add cfg: \"psk.packet.mod_hdr_version,1\" to driver.micromodem (on every modem "
-            "of the network: FDP and legacy PSK packets cannot decode each other)",
-            r);
-      }
-      if (auto why = needs_dest(true); !why.empty()) return invalid(r, why);
-      const auto& mm1 = settings_.mm1_modems;
-      if (std::find(mm1.begin(), mm1.end(), r.dest()) != mm1.end()) {
-        return link::driver_specific_error(DriverSpecificStatus::kFailedPrecondition,
-                                           "cannot send FDP to modem " + std::to_string(r.dest()) +
-                                               ": it is a Micro-Modem 1 (driver.micromodem.mm1_modems), which "
-                                               "cannot decode the flexible data protocol",
-                                           r);
-      }
-      int limit = nmea::fdp_max_data_bytes(static_cast<int>(ask.fdp_rate()));
-      if (limit == 0) return invalid(r, "micromodem.fdp_rate " + std::to_string(ask.fdp_rate()) + " is not an FDP rate (1, 3 or 5)");
-      if (ask.fdp_data().empty() || static_cast<int>(ask.fdp_data().size()) > limit - kFdpHeader) {
-        return invalid(r, "micromodem.fdp_data has " + std::to_string(ask.fdp_data().size()) +
-                              " bytes: FDP rate " + std::to_string(ask.fdp_rate()) + " carries 1.." +
-                              std::to_string(limit - kFdpHeader) + " (its " + std::to_string(limit) +
-                              "-byte data section less the driver's 2-byte header)");
-      }
-      break;
-    }
-    default:
-      return invalid(r, "micromodem.kind is required: PING, NARROWBAND_LBL, REMUS_LBL, MINI_PACKET or FDP");
-  }
-  return {DriverSpecificStatus::kOk, "", r};
+DriverSpecificResult DriverSpecificExchange::check(const ModemTransmission& request) const {
+  return check_request(request, settings_, hooks_.generation ? hooks_.generation() : std::nullopt);
 }
 
 void DriverSpecificExchange::send(const ModemTransmission& request, double deadline_s, link::DriverSpecificDone done) {
@@ -240,7 +135,7 @@ void DriverSpecificExchange::start_lbl() {
     x.sync_pps = lbl.sync_pps();
     x.pps_timeout = static_cast<int>(lbl.pps_timeout());
     x.timeout_ms = timeout_ms = static_cast<int>(lbl.timeout_ms());
-    for (char c : lbl.beacons()) x.listen[kLetters.find(c)] = true;
+    for (char c : lbl.beacons()) x.listen[kTransponderLetters.find(c)] = true;
     interrogation = nmea::to_sentence(x);
   }
   std::string echo = narrowband ? "SNPNT" : "SNPDT";
@@ -355,7 +250,7 @@ bool DriverSpecificExchange::on_travel_times(const nmea::TravelTimes& times) {
   if (ask.kind() == Kind::NARROWBAND_LBL) {
     for (int i = 0; i < ask.narrowband_lbl().reply_frequency_hz_size(); ++i) {
       drivers::LblReply* reply = ask.add_lbl_reply();
-      reply->set_transponder(std::string(1, kLetters[i]));
+      reply->set_transponder(std::string(1, kTransponderLetters[i]));
       reply->set_frequency_hz(ask.narrowband_lbl().reply_frequency_hz(i));
       reply->set_answered(times.travel_time_s[i].has_value());
       if (times.travel_time_s[i]) {
@@ -365,9 +260,9 @@ bool DriverSpecificExchange::on_travel_times(const nmea::TravelTimes& times) {
     }
   } else if (ask.kind() == Kind::REMUS_LBL) {
     for (int i = 0; i < nmea::kTransponders; ++i) {
-      if (ask.remus_lbl().beacons().find(kLetters[i]) == std::string::npos) continue;
+      if (ask.remus_lbl().beacons().find(kTransponderLetters[i]) == std::string::npos) continue;
       drivers::LblReply* reply = ask.add_lbl_reply();
-      reply->set_transponder(std::string(1, kLetters[i]));
+      reply->set_transponder(std::string(1, kTransponderLetters[i]));
       reply->set_answered(times.travel_time_s[i].has_value());
       if (times.travel_time_s[i]) {
         reply->set_travel_time_s(*times.travel_time_s[i]);

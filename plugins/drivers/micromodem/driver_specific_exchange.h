@@ -6,7 +6,8 @@
 //
 // One at a time, like the modem itself. The LinkController decides when
 // (this node's slot, or a poll's channel); this class checks a request at
-// once (bounds, MM2-only features, FDP configured), sends its command
+// once (driver_specific_request.h: bounds, MM2-only features, FDP
+// configured), sends its command
 // through the CommandQueue (echo-confirmed, never repeated: a repeated ping
 // would be a second ping) and waits for the answer:
 //   ping        $CCMPC → $CAMPC … $CAMPR from dest: one-way travel time;

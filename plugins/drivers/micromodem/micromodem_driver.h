@@ -9,6 +9,10 @@
 // result per transmission, received DATA, ACKs for our frames.
 // The decision: this class reads and writes lines and routes each sentence
 // to the one part that owns it, one concept per file:
+//   micromodem_settings — driver.micromodem, read and checked once
+//   micromodem_driver.cpp — the driver's lifecycle (start, stop, reboots,
+//                       keep-alive) and its sending
+//   micromodem_sentence_routes.cpp — each received sentence to its part
 //   startup_sequence  — §4.6: revision, SRC = modem_id, NVRAM, user cfg, clock
 //   command_queue     — one command at a time, echo-confirmed, retried
 //   data_cycle        — $CCCYC / $CADRQ / $CCTXD / transmit reports, polls
@@ -38,6 +42,9 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
 
 #include "acomms/v1/config.pb.h"
 #include "core/scheduler.h"
@@ -49,6 +56,7 @@
 #include "micromodem/data_cycle.h"
 #include "micromodem/driver_specific_exchange.h"
 #include "micromodem/fdp_data_link.h"
+#include "micromodem/micromodem_settings.h"
 #include "micromodem/modem_port.h"
 #include "micromodem/nmea/line_framer.h"
 #include "micromodem/reception.h"
@@ -83,7 +91,7 @@ class MicroModemDriver final : public link::Driver {
   // "MM2 2.0.27087" once a $CAREV said so.
   std::string modem() const override;
 
-  int32_t modem_id() const { return id_; }
+  int32_t modem_id() const { return settings_.id; }
   // Start-up finished and no reboot since.
   bool ready() const { return ready_; }
   std::optional<ModemGeneration> generation() const { return generation_; }
@@ -99,8 +107,13 @@ class MicroModemDriver final : public link::Driver {
   void on_bytes(std::string_view bytes);
   void on_port_state(link::TransportState state, const std::string& detail);
   void on_line(const std::string& line);
+  // micromodem_sentence_routes.cpp: a sentence to the part that owns it.
   void dispatch(const ::acomms::micromodem::Sentence& sentence);
-  // The sentences of driver-specific exchanges; true when it took this one.
+  using Route = void (*)(MicroModemDriver& driver, const ::acomms::micromodem::Sentence& sentence);
+  // The data path's $CA sentences by type (REV, CYC, ...).
+  static const std::unordered_map<std::string_view, Route>& routes();
+  // The sentences of driver-specific exchanges; true when it took this one
+  // (micromodem_driver_specific.cpp).
   bool dispatch_driver_specific(const ::acomms::micromodem::Sentence& sentence);
   void on_revision(const ::acomms::micromodem::Sentence& sentence);
   void on_cycle(const ::acomms::micromodem::Sentence& sentence);
@@ -122,13 +135,10 @@ class MicroModemDriver final : public link::Driver {
   template <typename T>
   bool parsed(const ::acomms::micromodem::Result<T>& result, const ::acomms::micromodem::Sentence& sentence);
 
-  int32_t id_;
+  const MicroModemSettings settings_;  // first: every other member is built from it
   std::string label_;
   core::Scheduler& scheduler_;
   std::unique_ptr<ModemPort> port_;
-  std::vector<ConfigParameter> user_cfg_;
-  double time_scale_ = 1;
-  double max_range_m_ = 2000;  // sizes a poll's Nframes (poll_frames.h)
   link::DriverSequence sequence_;  // holds the callbacks between start() and stop()
   ::acomms::micromodem::LineFramer framer_;
   ::acomms::micromodem::LineFramer::Counters framer_seen_;
@@ -138,8 +148,6 @@ class MicroModemDriver final : public link::Driver {
   Reception reception_;
   AckTracker acks_;
   DriverSpecificExchange extras_;
-  bool fdp_data_ = false;            // driver.micromodem.fdp_data
-  std::vector<int32_t> mm1_modems_;  // no FDP DATA towards these
   FdpDataLink fdp_;
   std::unique_ptr<StartupSequence> startup_;
   bool ready_ = false;

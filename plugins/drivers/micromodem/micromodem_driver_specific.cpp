@@ -66,7 +66,7 @@ bool MicroModemDriver::dispatch_driver_specific(const Sentence& s) {
   if (address == "CARDP") {
     auto r = nmea::parse_fdp_received(s);
     // With fdp_data, packets in its format are DATA and ACKs; others are extras.
-    if (parsed(r, s) && !(fdp_data_ && fdp_.on_received(*r))) extras_.on_fdp_received(*r);
+    if (parsed(r, s) && !(settings_.fdp_data && fdp_.on_received(*r))) extras_.on_fdp_received(*r);
     return true;
   }
   if (address == "CAMPA") {

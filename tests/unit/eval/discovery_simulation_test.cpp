@@ -8,6 +8,8 @@
 
 #include <vector>
 
+#include "eval/discovery_monte_carlo.h"
+#include "eval/discovery_report.h"
 #include "mac/blank_slot.h"
 
 namespace acomms::eval {
