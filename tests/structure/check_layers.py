@@ -16,7 +16,12 @@ and fails, naming file:line and the rule, when
      outside PLUGIN_PUBLIC, or another plugin's header;
   4. a folder under daemon/ is not in ALLOWED (a new room must be placed),
      or PLUGIN_PUBLIC names a header that no longer exists (a stale table
-     would let a renamed private header through).
+     would let a renamed private header through);
+  5. a public header (one another room or a plugin includes, or one in
+     PLUGIN_PUBLIC) says nothing about threads in its top comment: STYLE.md
+     asks each to state its thread-safety in one sentence at the top. (The
+     check is that the comment before the first line of code speaks of
+     threads at all; whether the sentence is true is the reviewer's.)
 
 An include is resolved as the compiler does for the project's include
 directories (the including file's folder, then daemon/, plugins/drivers/,
@@ -170,6 +175,19 @@ def allowed_text(room):
     return ", ".join(r for r in LAYERS + ["telemetry", "gram", "service", "node"] if r in ALLOWED[room]) or "nothing"
 
 
+def top_comment(path):
+    """The comment lines before the first line of code (#pragma once aside)."""
+    comment = []
+    with open(path, encoding="utf-8", errors="replace") as f:
+        for line in f:
+            text = line.strip()
+            if text.startswith("//"):
+                comment.append(text)
+            elif text and text != "#pragma once":
+                break
+    return "\n".join(comment)
+
+
 def check(root):
     problems = []
     plugins = plugin_names(root)
@@ -183,6 +201,9 @@ def check(root):
             if not os.path.isfile(os.path.join(daemon, room, header)):
                 problems.append(f"daemon/{room}/{header}: listed as public to plugins (PLUGIN_PUBLIC) but "
                                 f"missing: update the table")
+    # daemon-relative public header -> where it is first included from outside its room
+    public_headers = {f"{room}/{header}": "PLUGIN_PUBLIC"
+                      for room, headers in PLUGIN_PUBLIC.items() for header in headers or []}
     checked = 0
     for path in sources(root):
         who = owner(root, path)
@@ -201,6 +222,8 @@ def check(root):
                 continue
             where = f"{rel(root, path)}:{number}: {' '.join(m.group(0).split())}: "
             kind, name, inside = target
+            if kind == "room" and (who[0] == "plugin" or name != who[1]):
+                public_headers.setdefault(inside, where.split(": ")[0])
             if who[0] == "room":
                 room = who[1]
                 if kind == "plugin":
@@ -222,6 +245,12 @@ def check(root):
                     problems.append(where + f"plugin {plugin} includes daemon/{inside}, which is not in "
                                     f"the public set a plugin may use (tests/structure/check_layers.py "
                                     f"PLUGIN_PUBLIC)")
+    for inside, user in sorted(public_headers.items()):
+        path = os.path.join(daemon, inside)
+        if os.path.isfile(path) and not re.search(r"thread", top_comment(path), re.IGNORECASE):
+            problems.append(f"daemon/{inside}:1: public header (included by {user}) states no thread rule in "
+                            f"its top comment (STYLE.md: each public header states its thread-safety in "
+                            f"one sentence)")
     return problems, checked
 
 
@@ -239,7 +268,8 @@ def main(argv):
     if problems:
         print(f"check_layers: {len(problems)} broken rule(s) in {checked} includes")
         return 1
-    print(f"check_layers: ok, {checked} includes under daemon/ and plugins/ follow the layers")
+    print(f"check_layers: ok, {checked} includes under daemon/ and plugins/ follow the layers, "
+          f"and every public header states its thread rule")
     return 0
 
 

@@ -3,10 +3,11 @@
 
 A checker that passes today's tree proves nothing by itself: it may see no
 include at all. So this copies daemon/ and plugins/ of the source tree into
-a temporary folder, plants one include of each kind the checker must refuse
-(and two it must accept), and asserts that the checker fails and that what
-it reports beyond the unplanted copy's report is exactly the planted
-violations, each named by file:line and its rule.
+a temporary folder, plants one include of each kind the checker must refuse,
+an unlisted room and a public header without a thread sentence (and
+includes and headers it must accept), and asserts that the checker fails
+and that what it reports beyond the unplanted copy's report is exactly the
+planted violations, each named by file:line and its rule.
 
 Usage: check_layers_test.py CHECKER SOURCE_ROOT
 """
@@ -39,6 +40,13 @@ ACCEPTED = [
     ("plugins/drivers/udp/planted_public.cpp", '#include "link/driver.h"'),
 ]
 UNKNOWN_ROOM = "daemon/planted_room/planted.h"
+# Public headers and their thread sentence: (header, its top comment, who includes it).
+SILENT_PUBLIC = ("daemon/core/planted_silent.h", "// A planted public header.",
+                 ("daemon/queue/planted_silent_user.cpp", '#include "core/planted_silent.h"'))
+SPOKEN_PUBLIC = ("daemon/core/planted_spoken.h", "// A planted public header. Thread-safe: it holds nothing.",
+                 ("daemon/queue/planted_spoken_user.cpp", '#include "core/planted_spoken.h"'))
+SILENT_PRIVATE = ("daemon/core/planted_private.h", "// A planted header only its room includes.",
+                  ("daemon/core/planted_private_user.cpp", '#include "core/planted_private.h"'))
 
 
 def run(checker, root):
@@ -46,12 +54,12 @@ def run(checker, root):
     return result.returncode, [line for line in result.stdout.splitlines() if not line.startswith("check_layers:")]
 
 
-def plant(root, path, include):
+def plant(root, path, include, comment="// planted by check_layers_test.py"):
     full = os.path.join(root, path)
     os.makedirs(os.path.dirname(full), exist_ok=True)
     with open(full, "w", encoding="utf-8") as f:
         # Line 3, so that a report naming line 1 is caught.
-        f.write("// planted by check_layers_test.py\n#pragma once\n" + include + "\n")
+        f.write(comment + "\n#pragma once\n" + include + "\n")
 
 
 def main(argv):
@@ -69,6 +77,9 @@ def main(argv):
         for path, include in ACCEPTED:
             plant(copy, path, include)
         plant(copy, UNKNOWN_ROOM, "")
+        for header, comment, (user, include) in (SILENT_PUBLIC, SPOKEN_PUBLIC, SILENT_PRIVATE):
+            plant(copy, header, "", comment)
+            plant(copy, user, include)
         code, after = run(checker, copy)
     new = [line for line in after if line not in before]
     if code != 1:
@@ -80,11 +91,15 @@ def main(argv):
     if not any(line.startswith("daemon/planted_room/: room 'planted_room' is not in the layer table")
                for line in new):
         failures.append("not reported: daemon/planted_room/ as a room missing from the layer table")
-    for path, _ in ACCEPTED:
+    silent = f"{SILENT_PUBLIC[0]}:1: public header (included by {SILENT_PUBLIC[2][0]}:3) states no thread rule"
+    if not any(line.startswith(silent) for line in new):
+        failures.append(f"not reported: {SILENT_PUBLIC[0]}, a public header without a thread sentence")
+    for path in [path for path, _ in ACCEPTED] + [SPOKEN_PUBLIC[0], SILENT_PRIVATE[0]] + \
+            [SPOKEN_PUBLIC[2][0], SILENT_PRIVATE[2][0], SILENT_PUBLIC[2][0]]:
         for line in new:
             if line.startswith(path):
-                failures.append(f"an allowed include was refused: {line}")
-    expected_count = len(PLANTED) + 1
+                failures.append(f"refused, but the rules allow it: {line}")
+    expected_count = len(PLANTED) + 2
     if len(new) != expected_count:
         failures.append(f"{len(new)} new reports, expected {expected_count}:\n  " + "\n  ".join(new))
     for failure in failures:
