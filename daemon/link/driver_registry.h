@@ -6,10 +6,11 @@
 // and the config's driver.name picks one. Nothing lists the drivers: a new
 // driver is a new folder under plugins/drivers.
 //
-// Threads: linked() is filled during static initialisation only and only
-// read afterwards, by any thread; a DriverRegistry copied from it (a test's,
-// acommsctl's simulator) belongs to its maker and may replace drivers without
-// touching it. The drivers it creates live on the core thread (driver.h).
+// linked() is filled during static initialisation only and read only
+// afterwards; a DriverRegistry copied from it (a test's, acommsctl's
+// simulator) may replace drivers without touching it.
+// Threads: any thread may read linked() (it no longer changes once main()
+// starts); the drivers it creates live on the core thread (driver.h).
 
 #include <asio/io_context.hpp>
 
