@@ -2,6 +2,9 @@
 // Time for everything in acommsd. MAC slots, ttl expiry and priorities all read
 // a Clock, never the system directly, so a whole multi-node network can run in
 // one test process on simulated time, faster than real time and repeatably.
+//
+// Thread-safe: every Clock may be read from any thread (SimulatedClock under a
+// mutex, so a test thread may move it while the core thread reads it).
 
 #include <chrono>
 #include <mutex>

@@ -1,6 +1,8 @@
 #pragma once
 // A configuration problem, located so that the person editing the file can go
 // straight to it: "<file>:<line>:<column>: field '<path>': <what is wrong>".
+//
+// Thread-safe as any exception: set once when thrown, then only read.
 
 #include <stdexcept>
 #include <string>

@@ -2,6 +2,8 @@
 // Loading acommsd's config: protobuf text format against acomms.v1.Config,
 // then checks the parser cannot make (address syntax, name syntax), each
 // reported as a ConfigError with the file, line, column and field.
+//
+// Thread-safe: functions of their input only; nothing is kept between calls.
 
 #include <string>
 #include <string_view>

@@ -8,6 +8,8 @@
 // certificate. So both ends read their files here first, and every error
 // names the file by the setting that gave it (for example
 // "grpc.tls.cert_file /etc/acommsd/server.pem" or "--cert client.pem").
+//
+// Thread-safe: each call reads its own file and keeps nothing.
 
 #include <ctime>
 #include <stdexcept>

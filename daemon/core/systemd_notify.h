@@ -4,6 +4,8 @@
 // linking libsystemd because libsystemd is only shipped as a shared library
 // and acommsd links everything statically. Without $NOTIFY_SOCKET (not run by
 // systemd with Type=notify) every call is a no-op.
+//
+// Thread-safe: each call opens, uses and closes a socket of its own.
 
 #include <string_view>
 

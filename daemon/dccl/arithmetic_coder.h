@@ -24,6 +24,10 @@
 // wrote, whatever follows it, so the next field or message starts in the
 // right place. Coder bits are written most significant first, one per stream
 // position (DCCL's LSB-first packing of 1-bit values).
+//
+// Threads: coders share nothing; an Encoder, a Decoder and a table being
+// incremented belong to the one caller coding with them, while a table that is
+// only read may be shared.
 
 #include <cstddef>
 #include <cstdint>

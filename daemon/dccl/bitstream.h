@@ -3,6 +3,9 @@
 // A value v of n bits written at stream position p puts bit i of v at stream
 // bit p+i, and stream bit k lives in byte k/8 at bit k%8. Both classes work on
 // whole values of up to 64 bits so field codecs never handle single bits.
+//
+// Not thread-safe: a BitWriter or BitReader, and the bytes under it, belong to
+// the one encode or decode using it.
 #pragma once
 
 #include <cstddef>

@@ -8,6 +8,8 @@
 //   "unknown DCCL id 77"
 // so callers can log it as is. kind() lets callers tell a bad schema from bad
 // input without parsing the text.
+//
+// Thread-safe as any exception: set once when thrown, then only read.
 #pragma once
 
 #include <stdexcept>

@@ -16,6 +16,10 @@
 // A codec owns the whole field, repeated elements included, and accesses
 // the value through protobuf reflection with ctx.field (messages are
 // google::protobuf::DynamicMessage instances of the loaded schema).
+//
+// Threads: a factory runs while a schema loads (Codec::load, one thread); the
+// FieldCodec it returns is then only read, and its encode() and decode() run
+// on many threads at once (codec.h), so a codec keeps no mutable state.
 #pragma once
 
 #include <cstdint>

@@ -3,6 +3,9 @@
 // the .proto), defaults left out. Works on partial messages too: a decoded
 // message may lack a required field legitimately ((dccl.field).omit), and
 // a message being typed in has its required fields filled last.
+//
+// Thread-safe: a function of `message` alone (which must not change during the
+// call).
 
 #include <google/protobuf/message.h>
 

@@ -23,6 +23,9 @@
 //    sign-extended wire bits). Strict mode refuses NaN instead.
 // Everything that depends only on the options is computed once in the
 // constructor.
+//
+// Thread-safe once built: a NumericCore is only read while coding, so the
+// codecs holding one may encode and decode concurrently.
 #pragma once
 
 #include <cstdint>

@@ -4,6 +4,9 @@
 // so there is no generated C++ class for them. These structs hold the values
 // the built-in codecs need; the raw option message (with any codec-specific
 // extensions) stays available to plugin codecs through FieldContext.
+//
+// Thread-safe: plain values, filled once while a schema loads and only read
+// afterwards.
 #pragma once
 
 #include <cstdint>

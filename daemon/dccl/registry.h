@@ -3,6 +3,9 @@
 // A Codec owns one registry, filled with the built-in codecs
 // (_default2/3/4, dccl.default2/3/4, dccl.time, dccl.static, dccl.presence,
 // dccl.var_bytes); plugins add theirs before loading schemas that use them.
+//
+// Threads: filled (add) on one thread before schemas load; afterwards only
+// read (find), so a Codec's concurrent encodes and decodes may share it.
 #pragma once
 
 #include <string>

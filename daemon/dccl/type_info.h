@@ -1,6 +1,9 @@
 // What the codec knows about a loaded DCCL type: its id, sizes and the bit
 // budget of every field (for `acommsctl dccl analyze` and for planning
 // which messages fit in a modem frame).
+//
+// Thread-safe: plain values, filled once when a type loads and only read
+// afterwards.
 #pragma once
 
 #include <cstdint>

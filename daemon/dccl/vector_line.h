@@ -6,6 +6,8 @@
 // The " => hex" tail is optional. It is found outside string literals only:
 // `s: "a => b"` is a string, not an arrow (text format has no other place
 // where " => " can appear).
+//
+// Thread-safe: a pure function.
 #pragma once
 
 #include <string>

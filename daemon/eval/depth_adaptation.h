@@ -27,6 +27,9 @@
 // numbers), so strategies differ only by their physics; the expected
 // receipt (mean modelled probability) is reported beside the draws, free of
 // sampling noise. Same config and environment, same output, any build.
+//
+// Thread-safe: an evaluation shares nothing with another (its model runs on
+// threads of its own, `threads`).
 
 #include <cstdint>
 #include <optional>

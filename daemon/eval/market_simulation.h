@@ -66,6 +66,8 @@
 // D_s = 295 tau / tau_s with the defaults). Dynamic therefore wins when
 // tau_s is small (R = 0.1) and fixed_value when it is large (R = 10); with
 // the defaults the crossover at P_empty = 0 is near R = 3.3.
+//
+// Thread-safe: a pure function of its config and seed.
 
 #include <cstdint>
 #include <string>

@@ -15,6 +15,8 @@
 // slot and never resending: mean bits per delivered position, and the extra
 // latency (the newest scheme delivers its positions in the slot they are
 // made, so the delta scheme's mean delivery delay is all extra).
+//
+// Thread-safe: an evaluation shares nothing with another.
 
 #include <cstdint>
 #include <string>

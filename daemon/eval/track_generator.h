@@ -18,6 +18,8 @@
 //   glider  buoyancy glider: 0.3 m/s through the water, sawtooth 1-150 m at
 //           0.15 m/s, a tidal current (0.15 m/s, 12.42 h) it estimates only
 //           at the surface, surfacing every second dive; fixes every 10 s
+//
+// Thread-safe: pure functions of the kind and the seed.
 
 #include <cstdint>
 #include <string>

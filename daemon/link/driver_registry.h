@@ -1,5 +1,7 @@
 #pragma once
-// Drivers by name. Each driver plugin (plugins/drivers/<name>) adds its
+// Drivers by name. Any thread may read the linked registry once main()
+// starts; the drivers it builds live on the core thread (driver.h).
+// Each driver plugin (plugins/drivers/<name>) adds its
 // factory to the drivers linked into the program with a static
 // DriverRegistrar in its own .cpp (the plugins' library is linked whole, so
 // the linker keeps that object); the daemon takes DriverRegistry::linked()

@@ -18,6 +18,8 @@
 // e.g. rate 0, one frame: 0.3 + 256 / 80 = 3.5 s; rate 5, eight frames:
 // 0.3 + 16384 / 5300 = 3.391 s. Short "mini-packets" (a poll, a software
 // ACK) are modelled as 32 bits at 80 bps after the same 0.3 s: 0.7 s.
+//
+// Thread-safe: constant data and pure functions.
 
 #include <chrono>
 #include <cstdint>

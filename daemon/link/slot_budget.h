@@ -23,6 +23,9 @@
 // Invariant: frames_that_fit() never exceeds the rate table's limit it is
 // given, and is 0 when not even one frame fits (the caller then sends no
 // data: a packet that outruns its slot is worse than none).
+//
+// Thread-safe as the driver it asks: pure arithmetic over the driver's const
+// timing figures (air time, ACK time, sound speed).
 
 #include <chrono>
 #include <cstdint>

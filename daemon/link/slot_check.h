@@ -7,6 +7,10 @@
 // the node still listens, and a longer slot elsewhere in the cycle may be
 // the one that matters. So the check warns, one line per such slot, and
 // the config still passes.
+//
+// Thread-safe: the first form only reads the driver's const timing figures;
+// the second builds its own driver, never started, and shares nothing
+// (acommsd runs it for --check-config, before any core thread).
 
 #include <string>
 #include <vector>

@@ -10,6 +10,8 @@
 //  - a DATA transmission without frames heard with our own id as src is a
 //    poll for us: we answer with our data. (Nobody else sends with our src,
 //    so this needs no extra field on the wire.)
+//
+// Thread-safe: pure functions of their arguments.
 
 #include <cstdint>
 #include <string>

@@ -1,6 +1,10 @@
 #pragma once
 // The state of a transport (serial port, TCP connection, UDP socket), as it
 // reports it to its owner and, through it, to the LinkStatus API.
+//
+// Values and a callback type: each transport calls its TransportStateCallback
+// on the core thread (serial_transport.h, tcp_client_transport.h,
+// udp_transport.h).
 
 #include <functional>
 #include <string>

@@ -39,6 +39,8 @@
 //   next boundary.
 // * set_cycle is refused (std::invalid_argument): the cycle is what the node
 //   has heard, and a configured one belongs to the "fixed" MAC.
+//
+// Core thread only, like every Mac (mac.h), and checked (core/core_thread.h).
 
 #include <map>
 #include <optional>

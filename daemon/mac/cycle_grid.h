@@ -20,6 +20,8 @@
 //
 // With an epoch the grid never realigns: cycle k starts at epoch + k * length
 // for every integer k (negative before the epoch), and the count is k.
+//
+// Thread-safe: a CycleGrid is an immutable value (every method is const).
 
 #include <chrono>
 #include <cstdint>

@@ -16,6 +16,9 @@
 // or an unknown blank_rule for auto_discovery, own id < 1 for fixed/auto_discovery, a non-finite
 // epoch, or a fixed cycle longer than a day without an epoch (it could not
 // realign at midnight).
+//
+// Thread-safe: keeps no state; the Mac it builds lives on the core thread that
+// drives `scheduler` (mac.h).
 
 #include <cstdint>
 #include <memory>

@@ -5,6 +5,10 @@
 // message for good. This is the rule the link's software ACKs wait on
 // (link::DriverCallbacks::after_receipt_durable); tests/integration
 // queue_crash_test kills a receiver to show it holds.
+//
+// Threads: call the returned functions on the core thread, where the events
+// they cover are recorded; their callbacks run on the journal's thread, one at
+// a time, in order (durable_receipts posts `then` back to the core).
 
 #include <functional>
 

@@ -3,6 +3,9 @@
 // the received messages Subscribe replays after a seq, on its own read-only
 // connection: WAL lets it read while the group-commit writer appends, so a
 // query never delays a Submit.
+//
+// Thread-safe: its one read-only connection is used under a mutex, so any
+// thread may query.
 
 #include <cstdint>
 #include <mutex>

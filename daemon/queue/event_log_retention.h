@@ -17,6 +17,10 @@
 //    filter reads back at start (QueueManager::duplicate_window_s);
 //  - the received sequence counter (event_sequence): numbers are never
 //    handed out again, whatever is pruned.
+//
+// Threads: start() and stop() on the core thread, where the steps are
+// scheduled; each step runs on the writer's thread and reports back through
+// atomics.
 
 #include <atomic>
 #include <cstddef>

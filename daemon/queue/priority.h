@@ -8,6 +8,8 @@
 // they go stale (ttl). Every queue therefore gets the link eventually, and a
 // queue that just sent falls back to zero. Ties go to the queue that sent
 // longest ago.
+//
+// Thread-safe: a pure function.
 
 namespace acomms::queue {
 

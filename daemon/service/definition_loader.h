@@ -9,6 +9,9 @@
 // Types cannot change while the daemon runs (the descriptor pool only
 // grows, and queued messages were encoded with the old layout): loading a
 // different text under a name already used is refused.
+//
+// Not thread-safe: load() runs on the core thread (see service/definitions.h);
+// read_recorded and load_recorded only at start-up.
 
 #include <memory>
 #include <string>

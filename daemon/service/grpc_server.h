@@ -4,6 +4,10 @@
 // generic tools (grpcurl, grpc_health_probe) work without our .proto files.
 // TCP is TLS (optionally mutual) unless the config asked for plaintext
 // (grpc.insecure_tcp, which the config loader refuses to assume).
+//
+// Threads: built, switched (set_serving), reloaded and shut down from one
+// thread (the daemon's main thread); the services run on gRPC's threads, which
+// read the TLS certificates under TlsCertificates' own lock.
 
 #include <grpcpp/grpcpp.h>
 

@@ -2,6 +2,8 @@
 // A reconstructed telemetry position (telemetry/stream_receiver.h) as
 // clients see it: acomms.telemetry.Position, alone (Track) or wrapped as a
 // received message of that type (Subscribe).
+//
+// Thread-safe: pure conversions.
 
 #include "acomms/telemetry/position.pb.h"
 #include "acomms/v1/acomms.pb.h"

@@ -1,5 +1,7 @@
 #pragma once
 // A message taken off the link, as Subscribe streams it.
+//
+// Thread-safe: a pure conversion.
 
 #include "acomms/v1/acomms.pb.h"
 #include "acomms/v1/modem_transmission.pb.h"

@@ -6,6 +6,9 @@
 // traffic is a few messages a minute; a full buffer means the client stopped
 // reading), so it is ended with RESOURCE_EXHAUSTED instead of silently
 // losing messages in the middle of its stream.
+//
+// Thread-safe: any thread may subscribe, read a subscription or close;
+// publish() is called by one thread at a time, in seq order (below).
 
 #include <grpcpp/support/status.h>
 

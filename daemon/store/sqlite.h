@@ -1,6 +1,10 @@
 #pragma once
 // Thin RAII wrappers over the SQLite C API: a connection and a prepared
 // statement. Every failure throws StoreError carrying SQLite's own message.
+//
+// Not thread-safe: connections are opened SQLITE_OPEN_NOMUTEX, so a Database
+// and its Statements belong to one thread at a time (the store writer's, or a
+// reader's own connection under its lock).
 
 #include <sqlite3.h>
 

@@ -2,6 +2,10 @@
 // The daemon's one SQLite file (<data dir>/acommsd.db), in WAL mode, migrated
 // to this build's schema at open. The data dir is locked for the life of the
 // Store so that two daemons never share one set of queues.
+//
+// Threads: open and close it on one thread, which may use db() until a
+// GroupCommitWriter takes the connection; from then on only the writer's
+// thread touches it (group_commit_writer.h).
 
 #include <memory>
 #include <string>

@@ -1,4 +1,8 @@
 #pragma once
+// Failures of the store, with SQLite's result code when it had one.
+//
+// Thread-safe as any exception: set once when thrown, then only read.
+
 #include <sqlite3.h>
 
 #include <stdexcept>

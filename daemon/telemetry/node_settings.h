@@ -1,6 +1,9 @@
 #pragma once
 // acommsd's telemetry section (config.proto TelemetryConfig) turned into the
 // library's TelemetryConfig and what the daemon adds around it.
+//
+// Thread-safe: pure functions; the NodeSettings they make is only read
+// afterwards (its datum is shared const).
 
 #include <memory>
 #include <optional>

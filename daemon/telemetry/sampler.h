@@ -10,6 +10,9 @@
 // (Sample::new_segment), which the encoder sends as a full transmission.
 // Fixes that do not move time forward are ignored; fixes with a non-finite
 // field are refused (std::invalid_argument).
+//
+// Not thread-safe: a Sampler is one stream's state, owned by one thread (the
+// core thread in acommsd); sample_track() is a pure function.
 
 #include <optional>
 #include <vector>

@@ -9,6 +9,8 @@
 // different config starts over with a full transmission instead of decoding
 // garbage. Defaults are the thesis's (tau 10 s, 1 m, [-50, 51), sigma_j^2
 // 1e-3, R = 25 I).
+//
+// Thread-safe: a plain value and pure functions.
 
 #include <array>
 #include <cstdint>

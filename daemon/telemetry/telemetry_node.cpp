@@ -146,6 +146,7 @@ size_t TelemetryNode::on_fix(const Fix& fix) {
 }
 
 void TelemetryNode::when_stored(std::function<void(std::exception_ptr)> stored) {
+  ACOMMS_ASSERT_CORE_THREAD();
   // The writer commits in order: an empty request's commit follows every
   // request queued before it.
   writer_.post([](store::Database&) {}, std::move(stored));

@@ -9,6 +9,9 @@
 // travel unchanged as the repeated bool `body`. The receiver rebuilds the
 // library's bytes from a wire message whose order it has already checked,
 // with the 4-bit sequence the library expects (the wire sequence mod 16).
+//
+// Thread-safe: values and pure functions; to_dccl() only asks `codec` for a
+// new message, which a loaded Codec allows on any thread (codec.h).
 
 #include <google/protobuf/message.h>
 

@@ -7,6 +7,8 @@
 // would turn "too large for any frame" into a small number, so such sums
 // saturate: once any part is the maximum, so is the total. (uint64_t only:
 // the callers mix narrower unsigned types, which convert without loss.)
+//
+// Thread-safe: constexpr pure functions.
 
 #include <cstdint>
 #include <limits>

@@ -10,6 +10,9 @@
 // Invariant: the output sequence for a seed never changes. The evaluations'
 // published numbers and their tests depend on it (see
 // tests/unit/util/splitmix64_test.cpp for the reference values).
+//
+// Not thread-safe: a generator is one sequence's state; give each thread its
+// own (same seed, same numbers).
 
 #include <cstdint>
 

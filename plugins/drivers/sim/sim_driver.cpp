@@ -118,6 +118,7 @@ SimDriver::SimDriver(const v1::DriverConfig& config, core::Scheduler& scheduler,
 SimDriver::~SimDriver() { stop(); }
 
 void SimDriver::start(link::DriverCallbacks callbacks) {
+  ACOMMS_ASSERT_CORE_THREAD();
   stop();
   if (physics_ && !physics_->has_source())
     throw link::DriverError("sim modem " + std::to_string(id_) +
@@ -144,6 +145,7 @@ void SimDriver::start(link::DriverCallbacks callbacks) {
 }
 
 void SimDriver::stop() {
+  ACOMMS_ASSERT_CORE_THREAD();
   if (medium_) medium_->close();
   for (auto id : tasks_) scheduler_.cancel(id);
   tasks_.clear();
@@ -203,6 +205,7 @@ std::chrono::nanoseconds SimDriver::ack_time(int32_t) const { return kTurnaround
 link::DriverCounters SimDriver::counters() const { return {stats_.lost_half_duplex, stats_.lost_collision}; }
 
 std::string SimDriver::transmit(ModemTransmission tx, bool report_result) {
+  ACOMMS_ASSERT_CORE_THREAD();
   Clock::time_point now = scheduler_.clock().now();
   if (now < busy_until_) {
     char until[64];

@@ -38,6 +38,7 @@ UdpDriver::UdpDriver(const v1::DriverConfig& config, core::Scheduler& scheduler,
 UdpDriver::~UdpDriver() { stop(); }
 
 void UdpDriver::start(link::DriverCallbacks callbacks) {
+  ACOMMS_ASSERT_CORE_THREAD();
   stop();
   sequence_.start(std::move(callbacks));
   try {
@@ -51,6 +52,7 @@ void UdpDriver::start(link::DriverCallbacks callbacks) {
 }
 
 void UdpDriver::stop() {
+  ACOMMS_ASSERT_CORE_THREAD();
   transport_.close();
   sequence_.stop();
 }
@@ -65,6 +67,7 @@ void UdpDriver::do_work() {
 void UdpDriver::initiate_transmission(const ModemTransmission& request) { sequence_.transmit(request); }
 
 std::string UdpDriver::send(ModemTransmission tx, bool report) {
+  ACOMMS_ASSERT_CORE_THREAD();
   tx.set_time(now_seconds(scheduler_));
   std::string bytes = tx.SerializeAsString();
   if (sequence_.callbacks().on_raw) sequence_.callbacks().on_raw(bytes, true);

@@ -13,6 +13,8 @@
 #include <mutex>
 
 #include "core/clock.h"
+#include "core/event_loop.h"
+#include "core/logging.h"
 #include "queue/event_log_reader.h"
 #include "queue/queue_manager.h"
 #include "queue/sqlite_journal.h"
@@ -135,6 +137,26 @@ TEST_F(TelemetryNodeTest, RestartWithNothingNewRepublishesNothing) {
   expect_complete(track());
   std::lock_guard lock(mutex_);
   expect_complete(published_);
+}
+
+// when_stored() answers for "everything queued so far" by the core thread,
+// which owns the node: asked from another thread while the core runs, it
+// could answer before messages the core is queuing at that moment. The rule
+// is asserted, so such a call aborts.
+TEST_F(TelemetryNodeTest, WhenStoredFromAnotherThreadWhileTheCoreRunsFailsItsAssertion) {
+  store::Store store(dir_.string());
+  store::GroupCommitWriter writer(store.db());
+  TelemetryNode node(settings_, 1, codec_, writer, nullptr, nullptr, [](const std::vector<ReceivedPosition>&) {});
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_DEATH(
+      {
+        core::configure_logging(v1::INFO);  // the daemon's logger: stderr
+        core::EventLoop core;
+        core.start();
+        node.when_stored([](std::exception_ptr) {});
+      },
+      "when_stored.* must run on the core thread");
+  writer.stop();
 }
 
 }  // namespace
