@@ -10,6 +10,7 @@
 #include "global_options.h"
 #include "output.h"
 #include "rpc_error.h"
+#include "util/seconds.h"
 
 namespace acomms::cli {
 namespace {
@@ -22,10 +23,6 @@ struct EventsOptions {
   int64_t message_id = 0;
   uint32_t limit = 0;
 };
-
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 
 std::string id_text(int64_t id) { return id > 0 ? std::to_string(id) : "-"; }
 
@@ -82,7 +79,7 @@ void print_events(const v1::EventsResponse& response) {
 
 void run_events(const GlobalOptions& global, const EventsOptions& options) {
   v1::EventsRequest request;
-  const double now = now_s();
+  const double now = util::unix_seconds_now();
   if (!options.since.empty()) request.set_since(parse_time(options.since, now));
   if (!options.until.empty()) request.set_until(parse_time(options.until, now));
   for (const std::string& kind : options.kinds) request.add_kinds(kind);

@@ -10,6 +10,7 @@
 #include "global_options.h"
 #include "output.h"
 #include "rpc_error.h"
+#include "util/seconds.h"
 
 namespace acomms::cli {
 namespace {
@@ -21,10 +22,6 @@ struct QueueOptions {
   int64_t message_id = 0;
   std::string reason;
 };
-
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 
 void run_ls(const GlobalOptions& global, const QueueOptions& options) {
   v1::ListQueuedRequest request;
@@ -38,7 +35,7 @@ void run_ls(const GlobalOptions& global, const QueueOptions& options) {
   }
   std::printf("%-8s %-28s %-8s %-25s %9s %5s %-9s %s\n", "ID", "TYPE", "SRC>DEST", "SUBMITTED", "EXPIRES", "BYTES",
               "STATE", "MESSAGE");
-  const double now = now_s();
+  const double now = util::unix_seconds_now();
   for (const v1::QueuedMessage& m : response.messages()) {
     std::string expires = m.expires_at() > 0 ? std::to_string(static_cast<long long>(m.expires_at() - now)) + "s" : "-";
     std::printf("%-8lld %-28s %-8s %-25s %9s %5u %-9s %s\n", static_cast<long long>(m.message_id()), m.type().c_str(),

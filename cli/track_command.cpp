@@ -11,6 +11,7 @@
 #include "global_options.h"
 #include "output.h"
 #include "rpc_error.h"
+#include "util/seconds.h"
 
 namespace acomms::cli {
 namespace {
@@ -32,7 +33,7 @@ void run_track(const GlobalOptions& global, const TrackOptions& options) {
   v1::TrackRequest request;
   request.set_src(options.src);
   if (!options.since.empty()) {
-    const double now = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+    const double now = util::unix_seconds_now();
     request.set_since(parse_time(options.since, now));
   }
   ApiClient client(global);

@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #include "gram/bellhop_engine.h"
+#include "util/bound_text.h"
+#include "util/seconds.h"
 
 namespace acomms {
 namespace {
@@ -22,8 +24,8 @@ constexpr double kDefaultEngineTimeoutS = 60;
 double positive(const char* name, bool has, double value, double fallback, bool zero_ok = false) {
   if (!has) return fallback;
   if (!std::isfinite(value) || value < 0 || (!zero_ok && value == 0))
-    throw std::runtime_error(std::string("gram.") + name + " = " + std::to_string(value) + " must be " +
-                             (zero_ok ? "at least 0" : "greater than 0"));
+    throw std::runtime_error(util::must_be(std::string("gram.") + name, std::to_string(value),
+                                           zero_ok ? "at least 0" : "greater than 0"));
   return value;
 }
 
@@ -51,12 +53,12 @@ GramParts make_gram(const v1::GramConfig& c, const std::string& data_dir, store:
   gram::ModelPoolOptions pool;
   pool.workers = c.has_workers() ? c.workers() : kDefaultWorkers;
   if (pool.workers < 1 || pool.workers > kMaxWorkers)
-    throw std::runtime_error("gram.workers = " + std::to_string(pool.workers) + " must be within [1, " +
-                             std::to_string(kMaxWorkers) + "]");
+    throw std::runtime_error(
+        util::must_be("gram.workers", std::to_string(pool.workers), util::within("1", std::to_string(kMaxWorkers))));
   pool.queue_limit = c.has_queue_limit() ? c.queue_limit() : kDefaultQueueLimit;
   if (pool.queue_limit < 1 || pool.queue_limit > kMaxQueueLimit)
-    throw std::runtime_error("gram.queue_limit = " + std::to_string(pool.queue_limit) + " must be within [1, " +
-                             std::to_string(kMaxQueueLimit) + "]");
+    throw std::runtime_error(util::must_be("gram.queue_limit", std::to_string(pool.queue_limit),
+                                           util::within("1", std::to_string(kMaxQueueLimit))));
   pool.cache_bytes = static_cast<std::size_t>(
       positive("cache_mb", c.has_cache_mb(), c.cache_mb(), kDefaultCacheMb, true) * (1 << 20));
 
@@ -89,7 +91,7 @@ GramParts make_gram(const v1::GramConfig& c, const std::string& data_dir, store:
 service::SaveEnvironment save_environment_to(store::GroupCommitWriter& writer) {
   return [&writer](const gram::KnownEnvironment& state, std::function<void(std::exception_ptr)> done) {
     std::string bytes = state.SerializeAsString();
-    const double now = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+    const double now = util::unix_seconds_now();
     try {
       writer.post(
           [bytes = std::move(bytes), now](store::Database& db) {

@@ -1,9 +1,11 @@
 #include "core/clock.h"
 
+#include "util/seconds.h"
+
 namespace acomms::core {
 
 double Clock::now_seconds() const {
-  return std::chrono::duration<double>(now().time_since_epoch()).count();
+  return util::seconds_since_epoch(now());
 }
 
 Clock::time_point SimulatedClock::now() const {

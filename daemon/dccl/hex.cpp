@@ -2,42 +2,19 @@
 
 #include <stdexcept>
 
+#include "util/hex.h"
+
 namespace acomms::dccl {
-namespace {
 
-int nibble(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
-
-}  // namespace
-
-std::string to_hex(std::string_view bytes) {
-  static const char digits[] = "0123456789abcdef";
-  std::string hex;
-  hex.reserve(bytes.size() * 2);
-  for (unsigned char byte : bytes) {
-    hex += digits[byte >> 4];
-    hex += digits[byte & 0xf];
-  }
-  return hex;
-}
+std::string to_hex(std::string_view bytes) { return util::hex_encode(bytes, util::HexCase::kLower); }
 
 std::string from_hex(std::string_view hex) {
-  if (hex.size() % 2 != 0) throw std::invalid_argument("odd number of hex digits");
-  std::string bytes(hex.size() / 2, '\0');
-  for (size_t i = 0; i < hex.size(); i += 2) {
-    int high = nibble(hex[i]), low = nibble(hex[i + 1]);
-    if (high < 0 || low < 0) {
-      size_t bad = high < 0 ? i : i + 1;
-      throw std::invalid_argument("not a hex digit at position " + std::to_string(bad + 1) + ": '" +
-                                  std::string(1, hex[bad]) + "'");
-    }
-    bytes[i / 2] = static_cast<char>(high << 4 | low);
-  }
-  return bytes;
+  util::HexError error;
+  std::optional<std::string> bytes = util::hex_decode(hex, &error);
+  if (bytes) return *std::move(bytes);
+  if (error.odd_length) throw std::invalid_argument("odd number of hex digits");
+  throw std::invalid_argument("not a hex digit at position " + std::to_string(error.position) + ": '" +
+                              std::string(1, hex[error.position - 1]) + "'");
 }
 
 }  // namespace acomms::dccl

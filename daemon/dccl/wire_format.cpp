@@ -6,6 +6,7 @@
 
 #include "dccl/bitstream.h"
 #include "dccl/error.h"
+#include "util/seconds.h"
 
 namespace acomms::dccl {
 namespace gp = google::protobuf;
@@ -13,7 +14,7 @@ namespace gp = google::protobuf;
 namespace {
 
 double system_clock_seconds() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  return util::unix_seconds_now();
 }
 
 // Reads the DCCL id: one byte `id << 1`, or when its bit 0 is set two bytes

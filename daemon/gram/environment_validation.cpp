@@ -2,16 +2,13 @@
 #include "gram/environment_validation.h"
 
 #include <cmath>
-#include <sstream>
+
+#include "util/bound_text.h"
 
 namespace acomms::gram {
 namespace {
 
-std::string fmt(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
+std::string fmt(double v) { return util::format_number(v); }
 
 std::string indexed(const std::string& field, int i) {
   return field + "[" + std::to_string(i) + "]";

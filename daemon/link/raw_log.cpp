@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "util/hex.h"
+
 namespace acomms::link {
 
 RawLog::RawLog(std::filesystem::path path, uint64_t max_bytes, const core::Clock& clock)
@@ -31,13 +33,13 @@ std::string RawLog::format(core::Clock::time_point at, std::string_view bytes, b
                 utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec, static_cast<long long>(micros % 1'000'000));
   std::string line = stamp;
   line += outgoing ? " >> " : " << ";
-  for (unsigned char c : bytes) {
-    if (c >= 0x20 && c < 0x7f && c != '\\') {
-      line += static_cast<char>(c);
+  for (char c : bytes) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte < 0x7f && c != '\\') {
+      line += c;
     } else {
-      char escaped[5];
-      std::snprintf(escaped, sizeof escaped, "\\x%02X", c);
-      line += escaped;
+      line += "\\x";
+      line += util::hex_encode(std::string_view(&c, 1), util::HexCase::kUpper);
     }
   }
   return line;

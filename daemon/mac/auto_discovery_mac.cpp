@@ -9,6 +9,7 @@
 
 #include "mac/blank_slot.h"
 #include "core/core_thread.h"
+#include "util/seconds.h"
 
 namespace acomms::mac {
 namespace {
@@ -141,7 +142,7 @@ void AutoDiscoveryMac::begin_slot(size_t index) {
   }
   const Slot& slot = cycle_[index];
   if (slot.src != own_id_ || !transmit_) return;
-  const double seconds = std::chrono::duration<double>(slot_start.time_since_epoch()).count();
+  const double seconds = util::seconds_since_epoch(slot_start);
   transmit_(slot_transmission(slot, seconds));
 }
 

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "core/core_thread.h"
+#include "util/seconds.h"
 
 namespace acomms::mac {
 namespace {
@@ -96,7 +97,7 @@ void FixedMac::begin_slot(size_t index, core::Clock::time_point cycle_start) {
     plan_from(cycle_start + grid_.cycle_length());
   }
   if (slot.src != own_id_ || !transmit_) return;
-  const double seconds = std::chrono::duration<double>(slot_start.time_since_epoch()).count();
+  const double seconds = util::seconds_since_epoch(slot_start);
   transmit_(slot_transmission(slot, seconds));
 }
 

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "core/core_thread.h"
+#include "util/seconds.h"
 
 namespace acomms::mac {
 
@@ -45,8 +46,7 @@ void PolledMac::begin_slot(size_t index, core::Clock::time_point when) {
   // Scheduled before transmitting, so that a transmit callback that stops
   // the MAC cancels the right task.
   task_ = scheduler_.at(next, [this, next_index, next] { begin_slot(next_index, next); });
-  const double seconds =
-      std::chrono::duration<double>(when.time_since_epoch()).count();
+  const double seconds = util::seconds_since_epoch(when);
   if (transmit_) transmit_(slot_transmission(slot, seconds));
 }
 

@@ -7,6 +7,7 @@
 
 #include "gram/depth_objective_proto.h"
 #include "gram/list_directed.h"
+#include "util/seconds.h"
 
 namespace acomms::service {
 namespace {
@@ -194,8 +195,7 @@ grpc::ServerUnaryReactor* GramService::UpdateEnvironment(grpc::CallbackServerCon
   change.base = request->base();
   change.mask = mask_paths(request->override_mask());
   change.clear_instances = request->clear_instances();
-  const double now_s =
-      std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  const double now_s = util::unix_seconds_now();
   for (int i = 0; i < request->casts_size(); ++i) {
     const v1::CtdCast& cast = request->casts(i);
     const std::string field = "casts[" + std::to_string(i) + "]";

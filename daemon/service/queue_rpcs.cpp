@@ -2,6 +2,7 @@
 #include "service/acomms_service.h"
 #include "service/message_json.h"
 #include "service/rpc_status.h"
+#include "util/seconds.h"
 
 namespace acomms::service {
 namespace {
@@ -108,7 +109,7 @@ grpc::Status AcommsService::QueueStats(grpc::ServerContext*, const v1::QueueStat
   }
   std::set<std::string> wanted(request->types().begin(), request->types().end());
   node_.core.call([&] {
-    double now = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+    double now = util::unix_seconds_now();
     for (const queue::Queue* queue : node_.queues.queues()) {
       if (!wanted.empty() && wanted.count(queue->type()) == 0) continue;
       const queue::QueueStats stats = node_.queues.stats(queue->type());

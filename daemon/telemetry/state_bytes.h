@@ -8,13 +8,13 @@
 #include <string>
 #include <string_view>
 
+#include "util/little_endian.h"
+
 namespace acomms::telemetry {
 
 class StateWriter {
  public:
-  void put(uint64_t value, int bytes) {
-    for (int i = 0; i < bytes; ++i) out_.push_back(static_cast<char>((value >> (8 * i)) & 0xff));
-  }
+  void put(uint64_t value, int bytes) { util::put_le(&out_, value, bytes); }
   void put_bytes(std::string_view bytes) {
     put(bytes.size(), 4);
     out_.append(bytes);
@@ -28,13 +28,7 @@ class StateWriter {
 class StateReader {
  public:
   explicit StateReader(std::string_view in) : in_(in) {}
-  bool get(int bytes, uint64_t* value) {
-    if (in_.size() < static_cast<size_t>(bytes)) return false;
-    *value = 0;
-    for (int i = 0; i < bytes; ++i) *value |= uint64_t{static_cast<uint8_t>(in_[i])} << (8 * i);
-    in_.remove_prefix(static_cast<size_t>(bytes));
-    return true;
-  }
+  bool get(int bytes, uint64_t* value) { return util::take_le(&in_, bytes, value); }
   bool get_bytes(std::string* out) {
     uint64_t n = 0;
     if (!get(4, &n) || n > in_.size()) return false;

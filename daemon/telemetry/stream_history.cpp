@@ -1,22 +1,12 @@
 #include "telemetry/stream_history.h"
 
+#include "util/little_endian.h"
+
 namespace acomms::telemetry {
 namespace {
 
 constexpr uint8_t kVersion = 1;
 constexpr size_t kMaxSamples = 10002;  // full_every <= 10000, plus the full
-
-void put(std::string* out, uint64_t value, int bytes) {
-  for (int i = 0; i < bytes; ++i) out->push_back(static_cast<char>((value >> (8 * i)) & 0xff));
-}
-
-bool get(std::string_view* in, int bytes, uint64_t* value) {
-  if (in->size() < static_cast<size_t>(bytes)) return false;
-  *value = 0;
-  for (int i = 0; i < bytes; ++i) *value |= uint64_t{static_cast<uint8_t>((*in)[i])} << (8 * i);
-  in->remove_prefix(static_cast<size_t>(bytes));
-  return true;
-}
 
 }  // namespace
 
@@ -24,23 +14,25 @@ bool get(std::string_view* in, int bytes, uint64_t* value) {
 // sequence (1), time_s (8), count (4), then count x 3 x int64 positions.
 std::string serialize(const StreamHistory& history, uint64_t config_fingerprint) {
   std::string out;
-  put(&out, kVersion, 1);
-  put(&out, config_fingerprint, 8);
-  put(&out, history.in_step ? 1 : 0, 1);
-  put(&out, history.sequence, 1);
-  put(&out, static_cast<uint64_t>(history.time_s), 8);
-  put(&out, history.since_full.size(), 4);
+  util::put_le(&out, kVersion, 1);
+  util::put_le(&out, config_fingerprint, 8);
+  util::put_le(&out, history.in_step ? 1 : 0, 1);
+  util::put_le(&out, history.sequence, 1);
+  util::put_le(&out, static_cast<uint64_t>(history.time_s), 8);
+  util::put_le(&out, history.since_full.size(), 4);
   for (const GridPosition& position : history.since_full)
-    for (int64_t v : position) put(&out, static_cast<uint64_t>(v), 8);
+    for (int64_t v : position) util::put_le(&out, static_cast<uint64_t>(v), 8);
   return out;
 }
 
 std::optional<StreamHistory> parse_history(std::string_view in, uint64_t config_fingerprint) {
   uint64_t version, fingerprint, in_step, sequence, time, count;
-  if (!get(&in, 1, &version) || version != kVersion) return std::nullopt;
-  if (!get(&in, 8, &fingerprint) || fingerprint != config_fingerprint) return std::nullopt;
-  if (!get(&in, 1, &in_step) || in_step > 1) return std::nullopt;
-  if (!get(&in, 1, &sequence) || !get(&in, 8, &time) || !get(&in, 4, &count)) return std::nullopt;
+  if (!util::take_le(&in, 1, &version) || version != kVersion) return std::nullopt;
+  if (!util::take_le(&in, 8, &fingerprint) || fingerprint != config_fingerprint) return std::nullopt;
+  if (!util::take_le(&in, 1, &in_step) || in_step > 1) return std::nullopt;
+  if (!util::take_le(&in, 1, &sequence) || !util::take_le(&in, 8, &time) || !util::take_le(&in, 4, &count)) {
+    return std::nullopt;
+  }
   if (count > kMaxSamples || in.size() != count * 3 * 8) return std::nullopt;
   if ((in_step == 1) != (count > 0)) return std::nullopt;
   StreamHistory history;
@@ -51,7 +43,7 @@ std::optional<StreamHistory> parse_history(std::string_view in, uint64_t config_
   for (GridPosition& position : history.since_full) {
     for (int64_t& v : position) {
       uint64_t raw = 0;
-      get(&in, 8, &raw);
+      util::take_le(&in, 8, &raw);
       v = static_cast<int64_t>(raw);
     }
   }

@@ -67,8 +67,7 @@ std::string read_file(const std::string& path) {
 std::string node_config(const fs::path& dir, const std::string& name, int modem_id, const std::string& driver_extra,
                         const std::string& mac) {
   std::ostringstream config;
-  config << "data_dir: \"" << (dir / name).string() << "\"\n"
-         << "grpc { unix_socket: \"" << (dir / (name + ".sock")).string() << "\" }\n"
+  config << DaemonConfig{.data_dir = dir / name, .unix_socket = (dir / (name + ".sock")).string()}.text()
          << "driver { name: \"sim\" modem_id: " << modem_id << " " << driver_extra << " }\n"
          << "mac { " << mac << " }\n"
          << "dccl { proto_files: \"" << kTestProto << "\" strict: true }\n"

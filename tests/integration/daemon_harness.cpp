@@ -7,21 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <thread>
 
 #include "grpc/health/v1/health.grpc.pb.h"
 
 namespace acomms::testing {
-
-bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout,
-                std::chrono::milliseconds poll) {
-  auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (!condition()) {
-    if (std::chrono::steady_clock::now() >= deadline) return false;
-    std::this_thread::sleep_for(poll);
-  }
-  return true;
-}
 
 bool wait_serving(ChildProcess& daemon, const std::string& socket, std::chrono::milliseconds timeout) {
   bool exited = false;

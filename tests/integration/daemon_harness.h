@@ -17,13 +17,11 @@
 
 #include "acomms/v1/acomms.grpc.pb.h"
 #include "child_process.h"
+#include "daemon_config.h"
+#include "temp_dir.h"
+#include "wait_until.h"  // wait_until, for every test that waits on a daemon
 
 namespace acomms::testing {
-
-// Polls `condition` every `poll` until it holds (true) or `timeout` has
-// passed (false). The condition is always asked at least once.
-bool wait_until(const std::function<bool()>& condition, std::chrono::milliseconds timeout,
-                std::chrono::milliseconds poll = std::chrono::milliseconds(20));
 
 // The connections accepted on the unix socket at `socket`, by inode (the
 // accepted ends carry the listening socket's path in /proc/net/unix).

@@ -73,20 +73,15 @@ class FakeSystemd {
 class DaemonTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    // Short base path: unix socket paths are limited to 107 bytes.
-    dir_ = fs::path("/tmp") / ("acomms-it-" + std::to_string(::getpid()) + "-" +
-                               ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     socket_ = (dir_ / "api.sock").string();
     config_ = (dir_ / "acommsd.conf").string();
-    std::ofstream(config_) << "data_dir: \"" << (dir_ / "data").string() << "\"\n"
-                           << "log_level: DEBUG\n"
-                           << "grpc { unix_socket: \"" << socket_ << "\" }\n"
-                           << "driver { name: \"sim\" modem_id: 3 }\n"
-                           << "mac { name: \"fixed\" slot { src: 3 seconds: 10 } }\n";
+    DaemonConfig{.data_dir = dir_ / "data",
+                 .unix_socket = socket_,
+                 .rest = "log_level: DEBUG\n"
+                         "driver { name: \"sim\" modem_id: 3 }\n"
+                         "mac { name: \"fixed\" slot { src: 3 seconds: 10 } }\n"}
+        .write(config_);
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   std::unique_ptr<ChildProcess> start_daemon(const std::string& log_name,
                                              const std::map<std::string, std::string>& env = {}) {
@@ -100,7 +95,8 @@ class DaemonTest : public ::testing::Test {
 
   std::string db_path() const { return (dir_ / "data" / "acommsd.db").string(); }
 
-  fs::path dir_;
+  // Short base path: unix socket paths are limited to 107 bytes.
+  TempDir dir_{"acomms-it", "/tmp"};
   std::string socket_;
   std::string config_;
 };
@@ -404,12 +400,13 @@ TEST_F(DaemonTest, SigtermUnderSubmitLoadExitsCleanlyAndLosesNothing) {
   const std::string gv = ACOMMS_SHARED_DIR "/conformance/dccl/gv.proto";
   // The only slot is another node's: a message sent in a slot of our own
   // would leave the queue and look lost.
-  std::ofstream(config_) << "data_dir: \"" << (dir_ / "data").string() << "\"\n"
-                         << "grpc { unix_socket: \"" << socket_ << "\" }\n"
-                         << "driver { name: \"sim\" modem_id: 3 }\n"
-                         << "mac { name: \"fixed\" slot { src: 5 seconds: 10 } }\n"
-                         << "dccl { proto_files: \"" << gv << "\" }\n"
-                         << "queue { type { type: \"gv.NavigationReport\" policy { max_queue: 100000 } } }\n";
+  DaemonConfig{.data_dir = dir_ / "data",
+               .unix_socket = socket_,
+               .proto_file = gv,
+               .rest = "driver { name: \"sim\" modem_id: 3 }\n"
+                       "mac { name: \"fixed\" slot { src: 5 seconds: 10 } }\n"
+                       "queue { type { type: \"gv.NavigationReport\" policy { max_queue: 100000 } } }\n"}
+      .write(config_);
   auto daemon = start_daemon("load");
   ASSERT_TRUE(wait_serving(*daemon)) << daemon->stderr_text();
 
@@ -501,11 +498,12 @@ TEST_F(DaemonTest, TakenTcpPortExitsWithTheReasonAfterTheLinkStarted) {
   addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   ASSERT_EQ(::bind(holder, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
   ASSERT_EQ(::listen(holder, 1), 0);
-  std::ofstream(config_) << "data_dir: \"" << (dir_ / "data").string() << "\"\n"
-                         << "grpc { unix_socket: \"" << socket_ << "\" tcp_listen: \"127.0.0.1:" << port
-                         << "\" insecure_tcp: true }\n"
-                         << "driver { name: \"sim\" modem_id: 3 }\n"
-                         << "mac { name: \"fixed\" slot { src: 3 seconds: 10 } }\n";
+  DaemonConfig{.data_dir = dir_ / "data",
+               .unix_socket = socket_,
+               .grpc_extra = "tcp_listen: \"127.0.0.1:" + std::to_string(port) + "\" insecure_tcp: true",
+               .rest = "driver { name: \"sim\" modem_id: 3 }\n"
+                       "mac { name: \"fixed\" slot { src: 3 seconds: 10 } }\n"}
+      .write(config_);
   auto daemon = start_daemon("port_taken");
   std::optional<int> code = daemon->wait(15s);
   ::close(holder);

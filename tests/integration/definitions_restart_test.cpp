@@ -13,7 +13,6 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <thread>
 
 #include "acomms/v1/acomms.grpc.pb.h"
 #include "child_process.h"
@@ -42,22 +41,17 @@ message Waypoint {
 class DefinitionsRestartTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    // Short base path: unix socket paths are limited to 107 bytes.
-    dir_ = fs::path("/tmp") / ("acomms-defs-it-" + std::to_string(::getpid()) + "-" +
-                               std::to_string(++counter_));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     socket_ = (dir_ / "api.sock").string();
     config_ = (dir_ / "acommsd.conf").string();
     // The only slot is another node's: this daemon never transmits, so
     // nothing leaves its queue while the test looks.
-    std::ofstream(config_) << "data_dir: \"" << (dir_ / "data").string() << "\"\n"
-                           << "log_level: DEBUG\n"
-                           << "grpc { unix_socket: \"" << socket_ << "\" }\n"
-                           << "driver { name: \"sim\" modem_id: 3 }\n"
-                           << "mac { name: \"fixed\" slot { src: 5 seconds: 10 } }\n";
+    DaemonConfig{.data_dir = dir_ / "data",
+                 .unix_socket = socket_,
+                 .rest = "log_level: DEBUG\n"
+                         "driver { name: \"sim\" modem_id: 3 }\n"
+                         "mac { name: \"fixed\" slot { src: 5 seconds: 10 } }\n"}
+        .write(config_);
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   std::unique_ptr<ChildProcess> start(const std::string& log_name) {
     auto daemon = std::make_unique<ChildProcess>(kAcommsd, std::vector<std::string>{"--config", config_},
@@ -90,13 +84,11 @@ class DefinitionsRestartTest : public ::testing::Test {
     return stub.Submit(context().get(), request, response);
   }
 
-  static int counter_;
-  fs::path dir_;
+  // Short base path: unix socket paths are limited to 107 bytes.
+  TempDir dir_{"acomms-defs-it", "/tmp"};
   std::string socket_;
   std::string config_;
 };
-
-int DefinitionsRestartTest::counter_ = 0;
 
 TEST_F(DefinitionsRestartTest, LoadedTypeAndItsQueuedMessageSurviveSigkill) {
   int64_t id = 0;
@@ -181,14 +173,14 @@ TEST_F(DefinitionsRestartTest, EventsEncodeAndDecodeForALoadedType) {
   events_request.add_kinds("queued");
   events_request.add_types("mission.Waypoint");
   v1::EventsResponse events;
-  auto deadline = std::chrono::steady_clock::now() + 20s;
-  do {
-    events.Clear();
-    status = stub->Events(context().get(), events_request, &events);
-    ASSERT_TRUE(status.ok()) << status.error_message();
-    if (events.events_size() > 0) break;
-    std::this_thread::sleep_for(50ms);
-  } while (std::chrono::steady_clock::now() < deadline);
+  wait_until(
+      [&] {
+        events.Clear();
+        status = stub->Events(context().get(), events_request, &events);
+        return !status.ok() || events.events_size() > 0;  // a failed call stops the wait
+      },
+      20s, 50ms);
+  ASSERT_TRUE(status.ok()) << status.error_message();
   ASSERT_EQ(events.events_size(), 1) << events.DebugString();
   EXPECT_EQ(events.events(0).kind(), "queued");
   EXPECT_EQ(events.events(0).type(), "mission.Waypoint");

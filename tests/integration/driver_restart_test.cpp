@@ -45,9 +45,9 @@ TEST(DriverRestart, QueuedMessagesGoOutOnceTheTransportIsBack) {
   const int listen_port = free_udp_port(), peer_port = free_udp_port();
   const std::string socket = (dir / "api.sock").string();
   std::ofstream(dir / "node.conf")
-      << "data_dir: \"" << (dir / "data").string() << "\"\n"
-      << "grpc { unix_socket: \"" << socket << "\" }\n"
-      << "dccl { proto_files: \"" << (dir / "net.proto").string() << "\" }\n"
+      << DaemonConfig{.data_dir = dir / "data",
+                      .unix_socket = socket,
+                      .proto_file = (dir / "net.proto").string()}.text()
       << "queue { type { type: \"net.Status\" roles { source_field: \"src\" destination_field: \"dest\" } } }\n"
       << "driver { name: \"udp\" modem_id: 1 restart_min_s: 0.2 restart_max_s: 0.5\n"
       << "  udp { listen: \"127.0.0.1:" << listen_port << "\" peers: \"127.0.0.1:" << peer_port << "\" } }\n"

@@ -70,25 +70,21 @@ std::string cast_csv(double surface_degc) {
 class GramServiceTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path("/tmp") / ("acomms-gram-it-" + std::to_string(::getpid()) + "-" + std::to_string(++counter_));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     socket_ = (dir_ / "api.sock").string();
     config_ = (dir_ / "acommsd.conf").string();
     write_config("");
   }
   void TearDown() override {
     daemon_.reset();
-    fs::remove_all(dir_);
   }
 
   void write_config(const std::string& gram_extra) {
     std::string base;
     google::protobuf::TextFormat::PrintToString(base_environment(), &base);
-    std::ofstream(config_) << "data_dir: \"" << (dir_ / "data").string() << "\"\n"
-                           << "grpc { unix_socket: \"" << socket_ << "\" }\n"
-                           << "gram { workers: 1 queue_limit: 1 cache_mb: 16 " << gram_extra << "\n base {\n"
-                           << base << "} }\n";
+    DaemonConfig{.data_dir = dir_ / "data",
+                 .unix_socket = socket_,
+                 .rest = "gram { workers: 1 queue_limit: 1 cache_mb: 16 " + gram_extra + "\n base {\n" + base + "} }\n"}
+        .write(config_);
   }
   void start() {
     daemon_ = std::make_unique<ChildProcess>(kAcommsd, std::vector<std::string>{"--config", config_},
@@ -132,9 +128,9 @@ class GramServiceTest : public ::testing::Test {
     return wait_until([&] { return condition(pool()); }, 20s);
   }
 
-  static inline int counter_ = 0;
   int starts_ = 0;
-  fs::path dir_;
+  // Short base path: unix socket paths are limited to 107 bytes.
+  TempDir dir_{"acomms-gram-it", "/tmp"};
   std::string socket_, config_;
   std::unique_ptr<ChildProcess> daemon_;
   std::unique_ptr<v1::Gram::Stub> stub_;

@@ -157,9 +157,7 @@ TEST_F(KillStorm, EveryAcknowledgedCommandIsDeliveredExactlyOnceThroughRandomSig
   // The backlog grows with the storm (every restart and hold pauses the
   // topside): a minute, and a second more for each kill.
   const auto drain_bound = 60s + std::chrono::seconds(kills);
-  while (!all_arrived(delivered()) && std::chrono::steady_clock::now() - drain_began < drain_bound) {
-    std::this_thread::sleep_for(200ms);
-  }
+  wait_until([&] { return all_arrived(delivered()); }, drain_bound, 200ms);
   const double drain_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - drain_began).count();
   // A little longer, for copies that would come twice.
   std::this_thread::sleep_for(std::chrono::milliseconds(static_cast<int>(4 * kSlotSeconds * 1000)));

@@ -49,8 +49,7 @@ class Network {
     for (const auto& [id, cycle] : cycles) {
       std::string name = "n" + std::to_string(id);
       std::ofstream config(dir_ / (name + ".conf"));
-      config << "data_dir: \"" << (dir_ / name).string() << "\"\n"
-             << "grpc { unix_socket: \"" << socket(id) << "\" }\n"
+      config << DaemonConfig{.data_dir = dir_ / name, .unix_socket = socket(id)}.text()
              << "driver { name: \"sim\" modem_id: " << id << " sim { listen: \"127.0.0.1:" << port[id] << "\"";
       for (const auto& [other, unused] : cycles) {
         if (other != id) config << " peers: \"127.0.0.1:" << port[other] << "\"";

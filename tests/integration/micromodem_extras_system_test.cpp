@@ -73,9 +73,9 @@ class MicroModemExtras : public ::testing::Test {
 
   void write_config(int id) {
     std::ofstream config(dir_ / ("node" + std::to_string(id) + ".conf"));
-    config << "data_dir: \"" << (dir_ / ("node" + std::to_string(id))).string() << "\"\n"
-           << "grpc { unix_socket: \"" << socket(id) << "\" }\n"
-           << "dccl { proto_files: \"" << ACOMMS_SOURCE_DIR << "/examples/messages.proto\" }\n"
+    config << DaemonConfig{.data_dir = dir_ / ("node" + std::to_string(id)),
+                           .unix_socket = socket(id),
+                           .proto_file = ACOMMS_SOURCE_DIR "/examples/messages.proto"}.text()
            << "driver { name: \"micromodem\" modem_id: " << id << " micromodem { port: \"tcp:" << address_[id]
            << "\" time_scale: " << kTimeScale << " max_range_m: 2000 } }\n"
            << "mac { " << mac_for(id) << " }\n";

@@ -86,9 +86,9 @@ std::string MicroModemNetwork::daemon_log(int id) const {
 
 void MicroModemNetwork::write_config(int id, const std::string& mac, const std::string& micromodem) {
   std::ofstream config(dir_ / (node_name(id) + ".conf"));
-  config << "data_dir: \"" << (dir_ / node_name(id)).string() << "\"\n"
-         << "grpc { unix_socket: \"" << socket(id) << "\" }\n"
-         << "dccl { proto_files: \"" << ACOMMS_SOURCE_DIR << "/examples/messages.proto\" }\n"
+  config << DaemonConfig{.data_dir = dir_ / node_name(id),
+                         .unix_socket = socket(id),
+                         .proto_file = ACOMMS_SOURCE_DIR "/examples/messages.proto"}.text()
          // Restarts within seconds, not the default 20: tests unplug ports.
          << "driver { name: \"micromodem\" modem_id: " << id << " restart_min_s: 0.5 restart_max_s: 2"
          << " micromodem { port: \"tcp:" << address_[id]

@@ -33,6 +33,7 @@
 #include "gram/tl_lookup.h"
 #include "gram/transmission_loss.h"
 #include "stream_subscriber.h"
+#include "util/seconds.h"
 
 namespace acomms::testing {
 namespace {
@@ -85,9 +86,9 @@ class PhysicsTwoNode : public ::testing::Test {
   void start(int id, double x, double depth) {
     const fs::path conf = dir_ / (name(id) + ".conf");
     std::ofstream config(conf);
-    config << "data_dir: \"" << (dir_ / name(id)).string() << "\"\n"
-           << "grpc { unix_socket: \"" << socket(id) << "\" }\n"
-           << "dccl { proto_files: \"" << ACOMMS_SOURCE_DIR << "/examples/messages.proto\" }\n"
+    config << DaemonConfig{.data_dir = dir_ / name(id),
+                           .unix_socket = socket(id),
+                           .proto_file = ACOMMS_SOURCE_DIR "/examples/messages.proto"}.text()
            << "driver { name: \"sim\" modem_id: " << id << " sim { position { x: " << x << " z: " << -depth
            << " } listen: \"127.0.0.1:" << port_[id] << "\" peers: \"127.0.0.1:" << port_[3 - id] << "\""
            << " physics { env_file: \"" << (dir_ / "water.env").string() << "\" noise_level_db: " << kNoiseDb
@@ -115,8 +116,7 @@ class PhysicsTwoNode : public ::testing::Test {
   // datum; no telemetry config needed), answered once the daemon took it.
   void navigate_vehicle(double x, double depth) {
     // Fixes must move time forward; the wall clock may not have.
-    fix_time_ = std::max(fix_time_ + 1,
-                         std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
+    fix_time_ = std::max(fix_time_ + 1, util::unix_seconds_now());
     grpc::ClientContext context;
     v1::SubmitNavigationResponse response;
     auto writer = api(socket(1))->SubmitNavigation(&context, &response);

@@ -27,8 +27,7 @@ std::string SimNetwork::socket(int id) const { return (dir_ / (name(id) + ".sock
 
 void SimNetwork::write_config(int id, const Node& node) {
   std::ofstream config(dir_ / (name(id) + ".conf"));
-  config << "data_dir: \"" << (dir_ / name(id)).string() << "\"\n"
-         << "grpc { unix_socket: \"" << socket(id) << "\" }\n";
+  config << DaemonConfig{.data_dir = dir_ / name(id), .unix_socket = socket(id)}.text();
   if (node.example_messages) config << "dccl { proto_files: \"" << ACOMMS_SOURCE_DIR << "/examples/messages.proto\" }\n";
   config << "driver { name: \"sim\" modem_id: " << id << " sim { " << node.sim << " listen: \"127.0.0.1:" << port_[id]
          << "\" peers: \"127.0.0.1:" << port_[3 - id] << "\" } }\n"

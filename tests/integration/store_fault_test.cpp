@@ -36,21 +36,17 @@ const std::string kAcommsd = ACOMMSD_BINARY;
 class StoreFaultTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    // Short base path: unix socket paths are limited to 107 bytes.
-    dir_ = fs::path("/tmp") / ("acomms-sf-" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     socket_ = (dir_ / "api.sock").string();
     config_ = (dir_ / "acommsd.conf").string();
     // Another node's slot only: nothing is sent, so the queue changes only
     // by Submit.
-    std::ofstream(config_) << "data_dir: \"" << (dir_ / "data").string() << "\"\n"
-                           << "grpc { unix_socket: \"" << socket_ << "\" }\n"
-                           << "driver { name: \"sim\" modem_id: 3 }\n"
-                           << "mac { name: \"fixed\" slot { src: 5 seconds: 10 } }\n"
-                           << "dccl { proto_files: \"" << ACOMMS_SHARED_DIR "/conformance/dccl/gv.proto\" }\n";
+    DaemonConfig{.data_dir = dir_ / "data",
+                 .unix_socket = socket_,
+                 .proto_file = ACOMMS_SHARED_DIR "/conformance/dccl/gv.proto",
+                 .rest = "driver { name: \"sim\" modem_id: 3 }\n"
+                         "mac { name: \"fixed\" slot { src: 5 seconds: 10 } }\n"}
+        .write(config_);
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   std::string db_path() const { return (dir_ / "data" / "acommsd.db").string(); }
 
@@ -76,7 +72,8 @@ class StoreFaultTest : public ::testing::Test {
     return ids;
   }
 
-  fs::path dir_;
+  // Short base path: unix socket paths are limited to 107 bytes.
+  TempDir dir_{"acomms-sf", "/tmp"};
   std::string socket_;
   std::string config_;
 };

@@ -53,12 +53,7 @@ class StreamSubscriber {
   // Waits until `done(received)` holds or `timeout` passes.
   template <typename Done>
   bool wait_for(Done done, std::chrono::seconds timeout) {
-    auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-      if (done(received())) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-    return done(received());
+    return wait_until([&] { return done(received()); }, timeout, std::chrono::milliseconds(100));
   }
 
  private:

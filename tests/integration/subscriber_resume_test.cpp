@@ -221,9 +221,9 @@ TEST(SubscribeReplay, PrunedHistoryIsOutOfRangeNamingTheFirstSeqStillHeld) {
   const std::string socket = (dir / "d.sock").string();
   {
     std::ofstream config(dir / "d.conf");
-    config << "data_dir: \"" << (dir / "data").string() << "\"\n"
-           << "grpc { unix_socket: \"" << socket << "\" }\n"
-           << "dccl { proto_files: \"" << ACOMMS_SOURCE_DIR << "/examples/messages.proto\" }\n"
+    config << DaemonConfig{.data_dir = dir / "data",
+                           .unix_socket = socket,
+                           .proto_file = ACOMMS_SOURCE_DIR "/examples/messages.proto"}.text()
            << "driver { name: \"sim\" modem_id: 1 sim { listen: \"127.0.0.1:" << free_udp_port() << "\" } }\n";
   }
   ChildProcess daemon(ACOMMSD_BINARY, {"--config", (dir / "d.conf").string()}, (dir / "d").string());

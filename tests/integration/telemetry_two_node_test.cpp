@@ -22,6 +22,7 @@
 #include "daemon_harness.h"
 #include "sim_network.h"
 #include "stream_subscriber.h"
+#include "util/seconds.h"
 
 namespace acomms::testing {
 namespace {
@@ -68,7 +69,7 @@ class TelemetryTwoNode : public ::testing::Test {
     net_.start(1);
     net_.start(2);
     // Sample times on the whole second, today (a full codes the time of day).
-    t0_ = std::floor(std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count());
+    t0_ = std::floor(util::unix_seconds_now());
   }
   void TearDown() override { net_.stop(); }
 

@@ -12,7 +12,6 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <thread>
 
 #include "child_process.h"
 #include "net_status_proto.h"
@@ -59,9 +58,9 @@ TEST(ThreeNodeLoopback, EveryStatusReachesTheOtherTwo) {
   for (int id : ids) {
     std::string name = "node" + std::to_string(id);
     std::ofstream config(dir / (name + ".conf"));
-    config << "data_dir: \"" << (dir / name).string() << "\"\n"
-           << "grpc { unix_socket: \"" << (dir / (name + ".sock")).string() << "\" }\n"
-           << "dccl { proto_files: \"" << (dir / "net.proto").string() << "\" }\n"
+    config << DaemonConfig{.data_dir = dir / name,
+                           .unix_socket = (dir / (name + ".sock")).string(),
+                           .proto_file = (dir / "net.proto").string()}.text()
            << "queue { type { type: \"net.Status\" roles { source_field: \"src\" destination_field: \"dest\" } } }\n"
            << "driver { name: \"sim\" modem_id: " << id << " sim { position { x: " << 300 * id << " }"
            << " listen: \"127.0.0.1:" << port[id] << "\"";
@@ -95,7 +94,6 @@ TEST(ThreeNodeLoopback, EveryStatusReachesTheOtherTwo) {
   }
 
   // Two 9 s cycles are enough for every node's slot to come round; allow more.
-  auto deadline = std::chrono::steady_clock::now() + 45s;
   std::map<int, std::set<int>> heard;
   auto all_heard = [&] {
     for (int id : ids) {
@@ -108,7 +106,7 @@ TEST(ThreeNodeLoopback, EveryStatusReachesTheOtherTwo) {
     }
     return true;
   };
-  while (!all_heard() && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(500ms);
+  wait_until(all_heard, 45s, 500ms);
   for (int id : ids) {
     std::set<int> others;
     for (int other : ids) {

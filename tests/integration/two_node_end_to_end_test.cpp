@@ -103,10 +103,7 @@ TEST_F(TwoNode, CommandStatusAndVehicleCrash) {
     EXPECT_NE(command.json().find("\"kind\":\"GOTO\""), std::string::npos) << command.json();
     EXPECT_EQ(command.link().transmission_src(), 2);
     // The ACK clears the topside's queue, and its event log says so.
-    auto cleared = std::chrono::steady_clock::now() + 10s;
-    while (queued(2, "example.Command").messages_size() > 0 && std::chrono::steady_clock::now() < cleared) {
-      std::this_thread::sleep_for(100ms);
-    }
+    wait_until([&] { return queued(2, "example.Command").messages_size() == 0; }, 10s, 100ms);
     EXPECT_EQ(queued(2, "example.Command").messages_size(), 0);
     std::vector<std::string> history = event_kinds(2, id);
     EXPECT_EQ(history, (std::vector<std::string>{"queued", "sent", "acked"}));
@@ -188,10 +185,8 @@ TEST_F(TwoNode, CommandStatusAndVehicleCrash) {
                                << net_.daemon(1).stderr_text();
   EXPECT_TRUE(twice.empty()) << twice.size() << " statuses delivered twice, first " << (twice.empty() ? 0 : twice.front());
   // And the ACKs clear the vehicle's queue.
-  auto drained = std::chrono::steady_clock::now() + std::chrono::seconds(static_cast<int>(3 * kCycleSeconds));
-  while (queued(1, "example.Status").messages_size() > 0 && std::chrono::steady_clock::now() < drained) {
-    std::this_thread::sleep_for(200ms);
-  }
+  wait_until([&] { return queued(1, "example.Status").messages_size() == 0; },
+             std::chrono::seconds(static_cast<int>(3 * kCycleSeconds)), 200ms);
   v1::ListQueuedResponse left = queued(1, "example.Status");
   EXPECT_EQ(left.messages_size(), 0) << left.DebugString() << net_.daemon(1).stderr_text();
   if (left.messages_size() > 0) {

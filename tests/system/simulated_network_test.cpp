@@ -4,59 +4,39 @@
 // collision-free cycle, then carry DCCL messages through the queues, with
 // acks clearing the senders' queues. Hours of network time run in seconds.
 
-#include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <fstream>
 #include <map>
 
 #include "core/scheduler.h"
-#include "net_status_proto.h"
-#include "link/link_controller.h"
 #include "mac/auto_discovery_mac.h"
-#include "mac/mac_factory.h"
-#include "queue/memory_journal.h"
-#include "queue/submitter.h"
-#include "sim/sim_channel.h"
-#include "sim/sim_driver.h"
+#include "net_status_proto.h"
+#include "sim_node.h"
+#include "temp_dir.h"
 
 namespace acomms {
 namespace {
 
-namespace fs = std::filesystem;
-namespace pb = google::protobuf;
 using namespace std::chrono_literals;
 
 
 // 2025-06-01 10:00:00 UTC: an ordinary morning, far from midnight.
 constexpr int64_t kStart = 1'748'772'000;
 
-struct Node {
+struct Node : testing::SimNode {
   Node(int32_t id, double x, core::SimulatedScheduler& scheduler, std::shared_ptr<drivers::SimChannel> channel,
-       const std::string& proto) {
-    codec.load(proto);
-    v1::QueueConfig queue_config;
-    pb::TextFormat::ParseFromString(
-        R"(type { type: "net.Status" roles { source_field: "src" destination_field: "dest" } })", &queue_config);
-    queues = std::make_unique<queue::QueueManager>(codec, queue_config, id, scheduler.clock(), journal);
-
-    driver_config.set_name("sim");
-    driver_config.set_modem_id(static_cast<uint32_t>(id));
-    driver_config.mutable_sim()->mutable_position()->set_x(x);
-    driver = std::make_unique<drivers::SimDriver>(driver_config, scheduler, channel);
-
-    v1::MacConfig mac_config;
-    pb::TextFormat::ParseFromString(
-        R"(name: "auto_discovery" slot_seconds: 10 rate: 0 coolness: 4 expire_cycles: 20 blank_rule: "anywhere")",
-        &mac_config);
-    mac = mac::make_mac(mac_config, id, scheduler);
-    link = std::make_unique<link::LinkController>(
-        id, *queues, *mac, *driver, [this](queue::ReceivedMessage m, const v1::ModemTransmission&) {
-          received.push_back(m.message->ShortDebugString());
-        });
-  }
+       const std::string& proto)
+      : SimNode({.id = id,
+                 .x = x,
+                 .proto = proto,
+                 .queue_config =
+                     R"(type { type: "net.Status" roles { source_field: "src" destination_field: "dest" } })",
+                 .mac_config = R"(name: "auto_discovery" slot_seconds: 10 rate: 0 coolness: 4 expire_cycles: 20 )"
+                               R"(blank_rule: "anywhere")"},
+                scheduler, std::move(channel), [this](queue::ReceivedMessage m, const v1::ModemTransmission&) {
+                  received.push_back(m.message->ShortDebugString());
+                }) {}
 
   std::vector<int32_t> cycle_ids() const {
     std::vector<int32_t> ids;
@@ -65,31 +45,15 @@ struct Node {
   }
 
   void submit(int32_t src, int32_t dest, int battery) {
-    auto m = codec.new_message("net.Status");
-    pb::TextFormat::ParseFromString("src: " + std::to_string(src) + " dest: " + std::to_string(dest) +
-                                        " battery: " + std::to_string(battery),
-                                    m.get());
-    // This thread is the core and MemoryJournal stores at once: answered
-    // before submit() returns.
-    queue::Submitter submitter(*queues, [](std::function<void()> work) { work(); });
-    queue::SubmitResult result;
-    submitter.submit(*m, 0, [&result](queue::SubmitResult r) { result = std::move(r); });
-    ASSERT_TRUE(result.ok()) << result.text;
+    SimNode::submit("net.Status", "src: " + std::to_string(src) + " dest: " + std::to_string(dest) +
+                                      " battery: " + std::to_string(battery));
   }
 
-  dccl::Codec codec;
-  queue::MemoryJournal journal;
-  std::unique_ptr<queue::QueueManager> queues;
-  v1::DriverConfig driver_config;
-  std::unique_ptr<drivers::SimDriver> driver;
-  std::unique_ptr<mac::Mac> mac;
-  std::unique_ptr<link::LinkController> link;
   std::vector<std::string> received;
 };
 
 TEST(SimulatedNetwork, ThreeNodesDiscoverEachOtherThenExchangeMessagesWithAcks) {
-  fs::path dir = fs::temp_directory_path() / ("acomms-net-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  testing::TempDir dir("acomms-net");
   std::ofstream(dir / "net.proto") << testing::kNetStatusProto;
 
   core::SimulatedScheduler scheduler{core::Clock::time_point(std::chrono::seconds(kStart))};
@@ -154,7 +118,6 @@ TEST(SimulatedNetwork, ThreeNodesDiscoverEachOtherThenExchangeMessagesWithAcks) 
     EXPECT_EQ(node->journal.stored(), 0u);
   }
   std::printf("converged after %d cycles (of 40 s) from the last power-on\n", waited_cycles);
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -8,11 +8,8 @@
 // slots still carry full packets, and their --check-config has no warning.
 
 #include <asio/io_context.hpp>
-#include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -24,17 +21,12 @@
 #include "link/rate_table.h"
 #include "link/slot_budget.h"
 #include "link/slot_check.h"
-#include "mac/mac_factory.h"
-#include "queue/memory_journal.h"
-#include "queue/submitter.h"
-#include "sim/sim_channel.h"
-#include "sim/sim_driver.h"
+#include "sim_node.h"
+#include "temp_dir.h"
 
 namespace acomms {
 namespace {
 
-namespace fs = std::filesystem;
-namespace pb = google::protobuf;
 using namespace std::chrono_literals;
 
 // 2025-06-01 10:00:00 UTC.
@@ -59,52 +51,27 @@ std::string fixed_mac(double seconds, const std::string& extra) {
          " " + extra;
 }
 
-struct Node {
+struct Node : testing::SimNode {
   Node(int32_t id, double x, core::SimulatedScheduler& scheduler, std::shared_ptr<drivers::SimChannel> channel,
-       const std::string& proto, const std::string& mac_text) {
-    codec.load(proto);
-    v1::QueueConfig queue_config;
-    pb::TextFormat::ParseFromString(R"(type { type: "slot.Reading" policy { max_queue: 5000 ttl_s: 86400 }
+       const std::string& proto, const std::string& mac_text)
+      : SimNode({.id = id,
+                 .x = x,
+                 .proto = proto,
+                 .queue_config = R"(type { type: "slot.Reading" policy { max_queue: 5000 ttl_s: 86400 }
                                            roles { source_field: "src" destination_field: "dest" } })",
-                                    &queue_config);
-    queues = std::make_unique<queue::QueueManager>(codec, queue_config, id, scheduler.clock(), journal);
-    v1::DriverConfig driver_config;
-    driver_config.set_name("sim");
-    driver_config.set_modem_id(static_cast<uint32_t>(id));
-    driver_config.mutable_sim()->mutable_position()->set_x(x);
-    driver = std::make_unique<drivers::SimDriver>(driver_config, scheduler, channel);
-    EXPECT_TRUE(pb::TextFormat::ParseFromString(mac_text, &mac_config)) << mac_text;
-    mac = mac::make_mac(mac_config, id, scheduler);
-    link = std::make_unique<link::LinkController>(
-        id, *queues, *mac, *driver,
-        [this](queue::ReceivedMessage m, const v1::ModemTransmission& from) {
-          seqs.push_back(m.message->GetReflection()->GetInt32(*m.message,
-                                                              m.message->GetDescriptor()->FindFieldByName("seq")));
-          packets[from.time()] = from.frame_size();
-        },
-        link::LinkOptions::from_config(mac_config, scheduler.clock()));
-  }
+                 .mac_config = mac_text,
+                 .link_options_from_mac = true},
+                scheduler, std::move(channel), [this](queue::ReceivedMessage m, const v1::ModemTransmission& from) {
+                  seqs.push_back(m.message->GetReflection()->GetInt32(
+                      *m.message, m.message->GetDescriptor()->FindFieldByName("seq")));
+                  packets[from.time()] = from.frame_size();
+                }) {}
 
   void submit(int32_t src, int32_t dest, int seq) {
-    auto m = codec.new_message("slot.Reading");
-    pb::TextFormat::ParseFromString("src: " + std::to_string(src) + " dest: " + std::to_string(dest) +
-                                        " seq: " + std::to_string(seq),
-                                    m.get());
-    // This thread is the core and MemoryJournal stores at once: answered
-    // before submit() returns.
-    queue::Submitter submitter(*queues, [](std::function<void()> work) { work(); });
-    queue::SubmitResult result;
-    submitter.submit(*m, 0, [&result](queue::SubmitResult r) { result = std::move(r); });
-    ASSERT_TRUE(result.ok()) << result.text;
+    SimNode::submit("slot.Reading", "src: " + std::to_string(src) + " dest: " + std::to_string(dest) +
+                                        " seq: " + std::to_string(seq));
   }
 
-  dccl::Codec codec;
-  queue::MemoryJournal journal;
-  std::unique_ptr<queue::QueueManager> queues;
-  std::unique_ptr<drivers::SimDriver> driver;
-  v1::MacConfig mac_config;
-  std::unique_ptr<mac::Mac> mac;
-  std::unique_ptr<link::LinkController> link;
   std::vector<int> seqs;                  // delivered here, in order
   std::map<double, int> packets;          // DATA heard here: arrival time -> frames
 };
@@ -115,8 +82,7 @@ struct Node {
 // a backlog what is left), every message must arrive and be acknowledged,
 // and nothing may be lost to half-duplex or collisions.
 void run_backlog(double slot_seconds, double max_range_m, uint32_t expected_fit) {
-  fs::path dir = fs::temp_directory_path() / ("acomms-slot-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  testing::TempDir dir("acomms-slot");
   std::ofstream(dir / "slot.proto") << kReadingProto;
   core::SimulatedScheduler scheduler{core::Clock::time_point(std::chrono::seconds(kStart))};
   auto channel = drivers::SimChannel::create(/*seed=*/13);
@@ -173,7 +139,6 @@ void run_backlog(double slot_seconds, double max_range_m, uint32_t expected_fit)
     EXPECT_EQ(node->link->stats().transmissions_failed, 0u) << "at node " << id;
     EXPECT_EQ(node->link->stats().acks_received, other.packets.size()) << "at node " << id;
   }
-  fs::remove_all(dir);
 }
 
 // 6 s slots, the default guard (2000 m): 0.3 s + n x 0.386 s of air, 1.2 s
@@ -197,8 +162,7 @@ TEST(SlotBudgetNetwork, FourSecondSlotsAtOneKilometreCarryTheThreeFramesThatFitA
 // 1.33 s) off: 8 - 1.2 - 1.33 = 5.47 s left, 0.3 + n x 0.386 + 1.2 +
 // 2 x 1.333 <= 5.47 for n = 3.
 TEST(SlotBudgetNetwork, AnswersToPollsCarryTheFramesThatFitInWhatIsLeftOfTheSlot) {
-  fs::path dir = fs::temp_directory_path() / ("acomms-slot-poll-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  testing::TempDir dir("acomms-slot-poll");
   std::ofstream(dir / "slot.proto") << kReadingProto;
   core::SimulatedScheduler scheduler{core::Clock::time_point(std::chrono::seconds(kStart))};
   auto channel = drivers::SimChannel::create(/*seed=*/17);
@@ -230,7 +194,6 @@ TEST(SlotBudgetNetwork, AnswersToPollsCarryTheFramesThatFitInWhatIsLeftOfTheSlot
     EXPECT_EQ(node->driver->counters().lost_collision, 0u);
   }
   EXPECT_EQ(polled.link->stats().acks_received, master.packets.size());
-  fs::remove_all(dir);
 }
 
 // examples/vehicle.conf and topside.conf: 10 s slots at rate 1, nodes 1.5 km

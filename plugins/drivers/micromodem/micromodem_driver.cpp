@@ -69,7 +69,7 @@ Duration MicroModemDriver::scaled(Duration d) const {
 }
 
 double MicroModemDriver::now_seconds() const {
-  return std::chrono::duration<double>(scheduler_.clock().now().time_since_epoch()).count();
+  return scheduler_.clock().now_seconds();
 }
 
 void MicroModemDriver::start(link::DriverCallbacks callbacks) {

@@ -14,6 +14,7 @@
 #include "sim/loopback_medium.h"
 #include "sim/pool_tl_grid_source.h"
 #include "sim/sim_physics.h"
+#include "util/seconds.h"
 
 namespace acomms::drivers {
 
@@ -25,10 +26,6 @@ namespace {
 constexpr double kDefaultSoundSpeed = 1500;  // m/s, sea water
 // Our transmissions older than this cannot overlap an arrival still to come.
 constexpr auto kHistory = std::chrono::minutes(5);
-
-double seconds_since_epoch(Clock::time_point t) {
-  return std::chrono::duration<double>(t.time_since_epoch()).count();
-}
 
 bool overlap(Clock::time_point a_start, Clock::time_point a_end, Clock::time_point b_start,
              Clock::time_point b_end) {
@@ -209,7 +206,7 @@ std::string SimDriver::transmit(ModemTransmission tx, bool report_result) {
   Clock::time_point now = scheduler_.clock().now();
   if (now < busy_until_) {
     char until[64];
-    std::snprintf(until, sizeof until, "%.3f", seconds_since_epoch(busy_until_));
+    std::snprintf(until, sizeof until, "%.3f", util::seconds_since_epoch(busy_until_));
     return "modem " + std::to_string(id_) + " is busy transmitting until " + until;
   }
   // Polls, ACKs and other frameless packets are mini-packets.
@@ -218,7 +215,7 @@ std::string SimDriver::transmit(ModemTransmission tx, bool report_result) {
   if (tx.type() == ModemTransmission::DATA && tx.frame_size() > 0 && rate != nullptr) {
     air_time = link::packet_air_time(*rate, static_cast<uint32_t>(tx.frame_size()));
   }
-  tx.set_time(seconds_since_epoch(now));
+  tx.set_time(util::seconds_since_epoch(now));
   Interval interval{now, now + air_time};
   busy_until_ = interval.end;
   own_transmissions_.push_back(interval);
@@ -323,7 +320,7 @@ void SimDriver::note_lost(const Arrival& arrival, const char* why) {
 
 void SimDriver::deliver(const Arrival& arrival) {
   ModemTransmission rx = arrival.envelope.transmission;
-  rx.set_time(seconds_since_epoch(arrival.interval.end));
+  rx.set_time(util::seconds_since_epoch(arrival.interval.end));
   char quality[96];
   std::snprintf(quality, sizeof quality, "sim range_m=%.1f delay_s=%.4f", arrival.range_m,
                 arrival.range_m / sound_speed_);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "util/little_endian.h"
+
 namespace acomms::drivers {
 
 namespace {
@@ -20,23 +22,6 @@ constexpr double kMaxCoordinate = 1e7;  // m
 constexpr int64_t kLatestStartNs = 4'102'444'800LL * 1'000'000'000LL;
 constexpr double kMaxTravelSeconds = 86'400;
 
-void put_u32(std::string* out, uint32_t v) {
-  for (int i = 0; i < 4; ++i) out->push_back(static_cast<char>((v >> (8 * i)) & 0xff));
-}
-void put_u64(std::string* out, uint64_t v) {
-  for (int i = 0; i < 8; ++i) out->push_back(static_cast<char>((v >> (8 * i)) & 0xff));
-}
-uint32_t get_u32(const unsigned char* p) {
-  uint32_t v = 0;
-  for (int i = 0; i < 4; ++i) v |= uint32_t{p[i]} << (8 * i);
-  return v;
-}
-uint64_t get_u64(const unsigned char* p) {
-  uint64_t v = 0;
-  for (int i = 0; i < 8; ++i) v |= uint64_t{p[i]} << (8 * i);
-  return v;
-}
-
 }  // namespace
 
 double distance(const SimPosition& a, const SimPosition& b) {
@@ -47,14 +32,16 @@ std::string encode(const SimEnvelope& e) {
   std::string body = e.transmission.SerializeAsString();
   std::string out(kMagic, sizeof kMagic);
   out.push_back(static_cast<char>(kVersion));
-  put_u32(&out, static_cast<uint32_t>(e.sender));
-  put_u64(&out, std::bit_cast<uint64_t>(e.position.x));
-  put_u64(&out, std::bit_cast<uint64_t>(e.position.y));
-  put_u64(&out, std::bit_cast<uint64_t>(e.position.z));
-  put_u64(&out, static_cast<uint64_t>(
-                    std::chrono::duration_cast<std::chrono::nanoseconds>(e.start.time_since_epoch()).count()));
-  put_u64(&out, static_cast<uint64_t>(e.duration.count()));
-  put_u32(&out, static_cast<uint32_t>(body.size()));
+  util::put_le(&out, static_cast<uint32_t>(e.sender), 4);
+  util::put_le(&out, std::bit_cast<uint64_t>(e.position.x), 8);
+  util::put_le(&out, std::bit_cast<uint64_t>(e.position.y), 8);
+  util::put_le(&out, std::bit_cast<uint64_t>(e.position.z), 8);
+  util::put_le(&out,
+               static_cast<uint64_t>(
+                   std::chrono::duration_cast<std::chrono::nanoseconds>(e.start.time_since_epoch()).count()),
+               8);
+  util::put_le(&out, static_cast<uint64_t>(e.duration.count()), 8);
+  util::put_le(&out, static_cast<uint32_t>(body.size()), 4);
   out += body;
   return out;
 }
@@ -71,13 +58,13 @@ std::optional<SimEnvelope> decode_envelope(std::string_view bytes, std::string* 
   const auto* p = reinterpret_cast<const unsigned char*>(bytes.data());
   if (p[4] != kVersion) return fail("envelope version " + std::to_string(p[4]) + ", expected 1");
   SimEnvelope e;
-  e.sender = static_cast<int32_t>(get_u32(p + 5));
-  e.position.x = std::bit_cast<double>(get_u64(p + 9));
-  e.position.y = std::bit_cast<double>(get_u64(p + 17));
-  e.position.z = std::bit_cast<double>(get_u64(p + 25));
-  auto start_ns = static_cast<int64_t>(get_u64(p + 33));
-  e.duration = std::chrono::nanoseconds(static_cast<int64_t>(get_u64(p + 41)));
-  uint32_t length = get_u32(p + 49);
+  e.sender = static_cast<int32_t>(static_cast<uint32_t>(util::load_le(p + 5, 4)));
+  e.position.x = std::bit_cast<double>(util::load_le(p + 9, 8));
+  e.position.y = std::bit_cast<double>(util::load_le(p + 17, 8));
+  e.position.z = std::bit_cast<double>(util::load_le(p + 25, 8));
+  auto start_ns = static_cast<int64_t>(util::load_le(p + 33, 8));
+  e.duration = std::chrono::nanoseconds(static_cast<int64_t>(util::load_le(p + 41, 8)));
+  uint32_t length = static_cast<uint32_t>(util::load_le(p + 49, 4));
   if (e.sender < 0) return fail("negative sender id " + std::to_string(e.sender));
   for (double coordinate : {e.position.x, e.position.y, e.position.z}) {
     // Also false for NaN.

@@ -21,7 +21,7 @@ std::vector<std::string> peers_of(const v1::DriverConfig& config) {
 }
 
 double now_seconds(const core::Scheduler& scheduler) {
-  return std::chrono::duration<double>(scheduler.clock().now().time_since_epoch()).count();
+  return scheduler.clock().now_seconds();
 }
 
 }  // namespace

@@ -5,9 +5,7 @@
 #include <google/protobuf/message.h>
 #include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -15,36 +13,26 @@
 
 #include "dccl/codec.h"
 #include "dccl/hex.h"
+#include "temp_dir.h"
 
 namespace acomms::dccl::testing {
 
-// A directory under /tmp removed with the object.
-class TempDir {
+// A directory under /tmp removed with the object (tests/support/temp_dir.h),
+// with .proto files written into it.
+class TempDir : public acomms::testing::TempDir {
  public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ = std::filesystem::temp_directory_path() /
-            ("dccl_unit_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
+  TempDir() : acomms::testing::TempDir("dccl_unit") {}
   // Writes `name` with the usual proto2 header (package t, DCCL options
   // imported) followed by body; returns its path.
   std::string write_proto(const std::string& name, const std::string& body) const {
     return write(name, "syntax = \"proto2\";\nimport \"dccl/option_extensions.proto\";\npackage t;\n" + body);
   }
   std::string write(const std::string& name, const std::string& text) const {
-    std::string file = (path_ / name).string();
+    std::string file = (*this / name).string();
     std::ofstream(file) << text;
     return file;
   }
-  std::string path() const { return path_.string(); }
-
- private:
-  std::filesystem::path path_;
+  std::string path() const { return string(); }
 };
 
 using acomms::dccl::from_hex;

@@ -6,18 +6,16 @@
 
 #include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <fstream>
 
 #include "queue/memory_journal.h"
-#include "queue/submitter.h"
+#include "submit_now.h"
+#include "temp_dir.h"
 
 namespace acomms::link {
 namespace {
 
-namespace fs = std::filesystem;
 namespace pb = google::protobuf;
 
 constexpr const char* kProto = R"(syntax = "proto2";
@@ -90,8 +88,6 @@ class FakeMac final : public mac::Mac {
 class LinkControllerTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("acomms-link-" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
     std::ofstream(dir_ / "lt.proto") << kProto;
     codec_.load((dir_ / "lt.proto").string());
     v1::QueueConfig config;
@@ -104,16 +100,11 @@ class LinkControllerTest : public ::testing::Test {
                                              });
     link_->start();
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   int64_t submit(const std::string& text) {
     auto m = codec_.new_message("lt.Status");
     pb::TextFormat::ParseFromString(text, m.get());
-    // This thread is the core and MemoryJournal stores at once: answered
-    // before submit() returns.
-    queue::Submitter submitter(*queues_, [](std::function<void()> work) { work(); });
-    queue::SubmitResult result;
-    submitter.submit(*m, 0, [&result](queue::SubmitResult r) { result = std::move(r); });
+    queue::SubmitResult result = acomms::testing::submit_now(*queues_, *m);
     EXPECT_TRUE(result.ok()) << result.text;
     return result.message_id;
   }
@@ -125,7 +116,7 @@ class LinkControllerTest : public ::testing::Test {
     return options;
   }
 
-  fs::path dir_;
+  acomms::testing::TempDir dir_{"acomms-link"};
   dccl::Codec codec_;
   core::SimulatedClock clock_{core::Clock::time_point(std::chrono::seconds(1'700'000'000))};
   queue::MemoryJournal journal_;

@@ -7,6 +7,7 @@
 
 #include "mac/cycle_grid.h"
 #include "mac_test_util.h"
+#include "util/seconds.h"
 
 namespace acomms::mac {
 namespace {
@@ -64,8 +65,7 @@ TEST(FixedMac, OwnSlotsExactlyOnCycleMultiplesSinceMidnight) {
     EXPECT_EQ(sent.transmission.dest(), -1);
     EXPECT_EQ(sent.transmission.slot_seconds(), 10);
     EXPECT_EQ(sent.transmission.type(), v1::ModemTransmission::DATA);
-    EXPECT_DOUBLE_EQ(sent.transmission.time(),
-                     std::chrono::duration<double>(sent.when.time_since_epoch()).count());
+    EXPECT_DOUBLE_EQ(sent.transmission.time(), util::seconds_since_epoch(sent.when));
   }
 }
 

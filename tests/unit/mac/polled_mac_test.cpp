@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "mac_test_util.h"
+#include "util/seconds.h"
 
 namespace acomms::mac {
 namespace {
@@ -34,8 +35,7 @@ TEST(PolledMac, IssuesEverySlotInOrderBackToBack) {
     EXPECT_EQ(sent.transmission.rate(), expected.rate) << i;
     EXPECT_EQ(sent.transmission.slot_seconds(), expected.seconds) << i;
     EXPECT_EQ(sent.transmission.type(), v1::ModemTransmission::DATA) << i;
-    EXPECT_DOUBLE_EQ(sent.transmission.time(),
-                     std::chrono::duration<double>(sent.when.time_since_epoch()).count());
+    EXPECT_DOUBLE_EQ(sent.transmission.time(), util::seconds_since_epoch(sent.when));
   }
 }
 

@@ -315,7 +315,7 @@ TEST_F(MicroModemDriverTest, APollAsksForTheFramesThatFitWhatIsLeftOfItsSlot) {
     b_->set_mark();
     ModemTransmission poll = data_to(2, 1, 1);
     poll.set_slot_seconds(slot_seconds);
-    poll.set_time(std::chrono::duration<double>(scheduler_.clock().now().time_since_epoch()).count());
+    poll.set_time(scheduler_.clock().now_seconds());
     a_->driver->initiate_transmission(poll);
     run(20s);
     std::vector<std::string> lines = a_->host_lines_since_mark();
@@ -334,7 +334,7 @@ TEST_F(MicroModemDriverTest, APollWhoseAnswerCannotFitItsSlotIsNotSent) {
   two_nodes();
   ModemTransmission poll = data_to(2, 1, 1);
   poll.set_slot_seconds(9);
-  poll.set_time(std::chrono::duration<double>(scheduler_.clock().now().time_since_epoch()).count());
+  poll.set_time(scheduler_.clock().now_seconds());
   a_->driver->initiate_transmission(poll);
   ASSERT_EQ(a_->results.size(), 1u);
   EXPECT_FALSE(a_->results[0].ok);

@@ -197,7 +197,7 @@ TEST_F(MicroModemFdpDataTest, AnExtraWhileFdpDataIsOnTheAirIsRefusedAndTheDataSt
   ping.set_dest(2);
   ping.MutableExtension(drivers::micromodem_transmission)->set_kind(drivers::MicroModemTransmission::PING);
   std::optional<link::DriverSpecificResult> result;
-  const double deadline = std::chrono::duration<double>(scheduler_.clock().now().time_since_epoch()).count() + 30;
+  const double deadline = scheduler_.clock().now_seconds() + 30;
   a_->driver->send_driver_specific(ping, deadline, [&](link::DriverSpecificResult r) { result = std::move(r); });
   ASSERT_TRUE(result.has_value());
   EXPECT_EQ(result->status, link::DriverSpecificStatus::kAborted);

@@ -18,6 +18,7 @@
 #include "store/group_commit_writer.h"
 #include "store/store.h"
 #include "store/store_error.h"
+#include "store_fixture.h"
 
 namespace acomms::queue {
 namespace {
@@ -41,24 +42,15 @@ QueueEvent event(double dt, QueueEventKind kind, const std::string& type, int64_
   return e;
 }
 
-class EventLogReaderTest : public ::testing::Test {
+class EventLogReaderTest : public acomms::testing::StoreFixture {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("acomms-events-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    store_ = std::make_unique<store::Store>((dir_ / "data").string());
-    writer_ = std::make_unique<store::GroupCommitWriter>(store_->db());
-    journal_ = std::make_unique<SqliteJournal>(*writer_);
+    open_store();
     reader_ = std::make_unique<EventLogReader>(store_->db().path());
   }
   void TearDown() override {
     reader_.reset();
-    journal_.reset();
-    writer_.reset();
-    store_.reset();
-    fs::remove_all(dir_);
+    close_store();
   }
 
   // The ten events most tests query (index = position in this list).
@@ -94,10 +86,6 @@ class EventLogReaderTest : public ::testing::Test {
     return out;
   }
 
-  fs::path dir_;
-  std::unique_ptr<store::Store> store_;
-  std::unique_ptr<store::GroupCommitWriter> writer_;
-  std::unique_ptr<SqliteJournal> journal_;
   std::unique_ptr<EventLogReader> reader_;
 };
 

@@ -19,6 +19,7 @@
 #include "queue/sqlite_journal.h"
 #include "store/group_commit_writer.h"
 #include "store/store.h"
+#include "store_fixture.h"
 
 namespace acomms::queue {
 namespace {
@@ -42,31 +43,22 @@ QueueEvent event_at(double time, QueueEventKind kind, int64_t message_id = 0, in
   return e;
 }
 
-class EventLogRetentionTest : public ::testing::Test {
+class EventLogRetentionTest : public acomms::testing::StoreFixture {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("acomms-retention-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
     open();
   }
   void TearDown() override {
     retention_.reset();
     close();
-    fs::remove_all(dir_);
   }
   void open() {
-    store_ = std::make_unique<store::Store>((dir_ / "data").string());
-    writer_ = std::make_unique<store::GroupCommitWriter>(store_->db());
-    journal_ = std::make_unique<SqliteJournal>(*writer_);
+    open_store();
     reader_ = std::make_unique<EventLogReader>(store_->db().path());
   }
   void close() {
     reader_.reset();
-    journal_.reset();
-    writer_.reset();
-    store_.reset();
+    close_store();
   }
   void start(RetentionPolicy policy, double duplicate_window_s = 300) {
     retention_ = std::make_unique<EventLogRetention>(*writer_, scheduler_, policy,
@@ -88,11 +80,7 @@ class EventLogRetentionTest : public ::testing::Test {
         .get();
   }
 
-  fs::path dir_;
   core::SimulatedScheduler scheduler_{core::Clock::time_point(std::chrono::seconds(static_cast<int64_t>(kNow)))};
-  std::unique_ptr<store::Store> store_;
-  std::unique_ptr<store::GroupCommitWriter> writer_;
-  std::unique_ptr<SqliteJournal> journal_;
   std::unique_ptr<EventLogReader> reader_;
   std::unique_ptr<EventLogRetention> retention_;
 };

@@ -21,6 +21,7 @@
 #include "queue/sqlite_journal.h"
 #include "store/group_commit_writer.h"
 #include "store/store.h"
+#include "store_fixture.h"
 
 namespace acomms::queue {
 namespace {
@@ -31,35 +32,18 @@ using store::GroupCommitWriter;
 using store::Statement;
 using store::StoreError;
 
-// A store, its writer and a journal over them, destroyed in the reverse order.
-struct OpenJournal {
-  explicit OpenJournal(const std::string& dir) : store(dir), writer(store.db()), journal(writer) {}
-  store::Store store;
-  GroupCommitWriter writer;
-  SqliteJournal journal;
-};
-
-class JournalTest : public ::testing::Test {
+class JournalTest : public acomms::testing::StoreFixture {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("acomms_journal_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    open();
-  }
-  void TearDown() override {
-    open_.reset();
-    fs::remove_all(dir_);
-  }
+  void SetUp() override { open(); }
 
-  void open() { open_ = std::make_unique<OpenJournal>(dir_.string()); }
+  // The store in the test's directory itself (not a data/ under it).
+  void open() { open_store(dir_.path()); }
   void reopen() {
-    open_.reset();
+    close_store();
     open();
   }
-  SqliteJournal& journal() { return open_->journal; }
-  GroupCommitWriter& writer() { return open_->writer; }
+  SqliteJournal& journal() { return *journal_; }
+  GroupCommitWriter& writer() { return *writer_; }
 
   // Queries run on the writer thread: the only one allowed on the connection.
   int64_t count(const std::string& sql) {
@@ -74,9 +58,6 @@ class JournalTest : public ::testing::Test {
   void exec(const std::string& sql) {
     writer().submit([sql](Database& db) { db.exec(sql); }).get();
   }
-
-  fs::path dir_;
-  std::unique_ptr<OpenJournal> open_;
 };
 
 JournalMessage message(const std::string& tag) {

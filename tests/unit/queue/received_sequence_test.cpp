@@ -15,6 +15,7 @@
 #include "queue/sqlite_journal.h"
 #include "store/group_commit_writer.h"
 #include "store/store.h"
+#include "store_fixture.h"
 
 namespace acomms::queue {
 namespace {
@@ -35,30 +36,21 @@ QueueEvent received(int64_t seq, const std::string& type, int32_t src, std::stri
   return e;
 }
 
-class ReceivedSequenceTest : public ::testing::Test {
+class ReceivedSequenceTest : public acomms::testing::StoreFixture {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("acomms-seq-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
     open();
   }
   void TearDown() override {
     close();
-    fs::remove_all(dir_);
   }
   void open() {
-    store_ = std::make_unique<store::Store>((dir_ / "data").string());
-    writer_ = std::make_unique<store::GroupCommitWriter>(store_->db());
-    journal_ = std::make_unique<SqliteJournal>(*writer_);
+    open_store();
     reader_ = std::make_unique<EventLogReader>(store_->db().path());
   }
   void close() {
     reader_.reset();
-    journal_.reset();
-    writer_.reset();
-    store_.reset();
+    close_store();
   }
   static std::vector<int64_t> seqs(const std::vector<StoredReceived>& page) {
     std::vector<int64_t> out;
@@ -66,10 +58,6 @@ class ReceivedSequenceTest : public ::testing::Test {
     return out;
   }
 
-  fs::path dir_;
-  std::unique_ptr<store::Store> store_;
-  std::unique_ptr<store::GroupCommitWriter> writer_;
-  std::unique_ptr<SqliteJournal> journal_;
   std::unique_ptr<EventLogReader> reader_;
 };
 

@@ -29,6 +29,7 @@
 #include "store/migration.h"
 #include "store/sqlite.h"
 #include "store/store.h"
+#include "store_fixture.h"
 
 namespace acomms::queue {
 namespace {
@@ -70,28 +71,20 @@ v1::LinkFigures parsed(const std::optional<std::string>& bytes) {
   return figures;
 }
 
-class StoredLinkFiguresTest : public ::testing::Test {
+class StoredLinkFiguresTest : public acomms::testing::StoreFixture {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("acomms-link-figures-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     std::ofstream(dir_ / "lf.proto") << kProto;
     codec_.load((dir_ / "lf.proto").string());
   }
   void TearDown() override {
     close();
-    fs::remove_all(dir_);
   }
 
   std::string data_dir() const { return (dir_ / "data").string(); }
 
   void open() {
-    store_ = std::make_unique<store::Store>(data_dir());
-    writer_ = std::make_unique<store::GroupCommitWriter>(store_->db());
-    journal_ = std::make_unique<SqliteJournal>(*writer_);
+    open_store(data_dir());
     v1::QueueConfig config;
     EXPECT_TRUE(pb::TextFormat::ParseFromString(
         "type { type: \"lf.Status\" roles { source_field: \"src\" destination_field: \"dest\" } }", &config));
@@ -102,9 +95,7 @@ class StoredLinkFiguresTest : public ::testing::Test {
   void close() {
     reader_.reset();
     manager_.reset();
-    journal_.reset();
-    writer_.reset();
-    store_.reset();
+    close_store();
   }
 
   std::string status(int value) {
@@ -118,12 +109,8 @@ class StoredLinkFiguresTest : public ::testing::Test {
     return reader_->received_after(0, {}, std::nullopt, 100);
   }
 
-  fs::path dir_;
   dccl::Codec codec_;
   core::SimulatedClock clock_{core::Clock::time_point(std::chrono::seconds(static_cast<int64_t>(kStart)))};
-  std::unique_ptr<store::Store> store_;
-  std::unique_ptr<store::GroupCommitWriter> writer_;
-  std::unique_ptr<SqliteJournal> journal_;
   std::unique_ptr<QueueManager> manager_;
   std::unique_ptr<EventLogReader> reader_;
 };

@@ -3,17 +3,18 @@
 #include <cctype>
 #include <stdexcept>
 
+#include "util/hex.h"
+
 namespace acomms::micromodem {
 namespace {
 
 bool printable(char c) { return c >= 0x20 && c <= 0x7E; }
 bool alnum(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0; }
 
-int hex_value(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  return -1;
+// The two upper-case digits a sentence's XOR checksum is written as.
+std::string checksum_digits(uint8_t sum) {
+  const char byte = static_cast<char>(sum);
+  return util::hex_encode(std::string_view(&byte, 1), util::HexCase::kUpper);
 }
 
 Error error(ErrorKind kind, std::string text) { return Error{kind, std::move(text)}; }
@@ -28,11 +29,8 @@ std::string quote(std::string_view text) {
     if (printable(c)) {
       out += c;
     } else {
-      static constexpr char kHex[] = "0123456789ABCDEF";
-      auto byte = static_cast<unsigned char>(c);
       out += "\\x";
-      out += kHex[byte >> 4];
-      out += kHex[byte & 0xF];
+      out += util::hex_encode(std::string_view(&c, 1), util::HexCase::kUpper);
     }
   }
   if (text.size() > kShown) out += "...";
@@ -55,7 +53,7 @@ std::vector<std::string> split_fields(std::string_view text) {
 Result<ChecksumState> check_checksum(std::string_view body, std::string_view digits,
                                      std::string_view line) {
   for (char c : digits) {
-    if (hex_value(c) < 0) {
+    if (util::hex_digit_value(c) < 0) {
       return error(ErrorKind::kMalformedChecksum,
                    "checksum " + quote(digits) + " is not hexadecimal in " + quote(line));
     }
@@ -65,11 +63,10 @@ Result<ChecksumState> check_checksum(std::string_view body, std::string_view dig
     return error(ErrorKind::kMalformedChecksum,
                  "checksum " + quote(digits) + " must be 2 hex digits in " + quote(line));
   }
-  int stated = hex_value(digits[0]) * 16 + hex_value(digits[1]);
+  int stated = util::hex_digit_value(digits[0]) * 16 + util::hex_digit_value(digits[1]);
   int computed = nmea_checksum(body);
   if (stated != computed) {
-    static constexpr char kHex[] = "0123456789ABCDEF";
-    std::string expected{kHex[computed >> 4], kHex[computed & 0xF]};
+    std::string expected = checksum_digits(static_cast<uint8_t>(computed));
     return error(ErrorKind::kBadChecksum, "checksum " + std::string(digits) + " should be " +
                                               expected + " in " + quote(line));
   }
@@ -177,9 +174,7 @@ std::string serialize(const Sentence& sentence) {
     body += ',';
     body += field;
   }
-  static constexpr char kHex[] = "0123456789ABCDEF";
-  uint8_t sum = nmea_checksum(body);
-  return "$" + body + "*" + kHex[sum >> 4] + kHex[sum & 0xF];
+  return "$" + body + "*" + checksum_digits(nmea_checksum(body));
 }
 
 }  // namespace acomms::micromodem
