@@ -148,7 +148,7 @@ void add_gram_service_commands(CLI::App& gram, const GlobalOptions& options) {
   static DepthOptions depth_options;
   static EnvOptions env_options;
   CLI::App* depth = gram.add_subcommand(
-      "depth", "Ask the daemon for the depth objective over depth (seed eq. 4.1-4.4, 4.7) and the best depth "
+      "depth", "Ask the daemon for the depth objective over depth (Schneider (2013) eq. 4.1-4.4, 4.7) and the best depth "
                "within the vehicle's limits");
   auto& d = depth_options;
   depth->add_option("--range", d.range_m, "Current range to the other node (m)")->required();
