@@ -179,7 +179,7 @@ TEST_F(AcommsctlHelpTest, TheWalkFindsEveryCommandGroup) {
   for (const char* path : {"status", "defs load", "queue cancel", "link cycle", "link ping", "gram env update",
                            "gram depth", "sim depth-adaptation", "dccl analyze", "completion"})
     EXPECT_TRUE(help_.contains(path)) << path;
-  EXPECT_GT(help_.size(), 40u);
+  EXPECT_GE(help_.size(), 40u);
 }
 
 TEST_F(AcommsctlHelpTest, EveryCommandEndsWithExamplesOfItself) {
