@@ -165,7 +165,7 @@ TEST_F(JsonReaderTest, MessageJsonIsOneLineAndIndentedMessageJsonTheSameOverSeve
   const std::string indented = indented_message_json(*message);
   EXPECT_EQ(line, R"({"count":5,"fix":{"quality":3}})");
   EXPECT_NE(indented.find('\n'), std::string::npos) << indented;
-  EXPECT_NE(indented.find("  \"count\": 5"), std::string::npos) << indented;
+  EXPECT_NE(indented.find("\n \"count\": 5,\n"), std::string::npos) << indented;
   for (const std::string& json : {line, indented}) {
     auto again = report();
     ASSERT_EQ(reader_.parse(json, again.get()), "") << json;
