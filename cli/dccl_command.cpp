@@ -169,6 +169,14 @@ int run_analyze(const DcclOptions& options) {
   return 0;
 }
 
+// The examples of --help, on the example types shipped with acommsd (the
+// decode example's line is what the encode example prints).
+constexpr const char* kEncodeExample =
+    "echo '|example.Status| src: 3 dest: 0 time: 1764000000 x: 120 y: -40 depth: 12.5' | "
+    "acommsctl dccl encode -f examples/messages.proto";
+constexpr const char* kDecodeExample = "echo 28030084433ca19bfa00000000000000 | acommsctl dccl decode -f examples/messages.proto";
+constexpr const char* kAnalyzeExample = "acommsctl dccl analyze -f examples/messages.proto -t example.Status";
+
 void add_schema_options(CLI::App* command, DcclOptions& options) {
   command->add_option("-f,--proto", options.proto_files, "DCCL .proto file(s) to load")->required()->type_name("FILE");
   command->add_option("-I,--include", options.include_dirs, "Directory to resolve imports in")->type_name("DIR");
@@ -197,24 +205,28 @@ void add_dccl_command(CLI::App& app, const GlobalOptions&) {
   CLI::App* dccl = app.add_subcommand(
       "dccl", "Encode, decode and analyze DCCL messages offline (no daemon needed)");
   dccl->require_subcommand(1);
+  dccl->footer(std::string("Examples:\n  ") + kEncodeExample + "\n  " + kDecodeExample + "\n  " + kAnalyzeExample);
 
   CLI::App* encode = add_line_command(
       dccl, "encode", "Read '|pkg.Type| <text format>' lines on stdin; print one hex line each",
       "Encrypt bodies (AES-256-CTR)", options, run_encode);
   encode->add_flag("--strict", options.strict,
                    "Refuse out-of-range values, over-long strings and extra repeats");
+  encode->footer(std::string("Example:\n  ") + kEncodeExample);
 
   CLI::App* decode = add_line_command(
       dccl, "decode", "Read hex lines on stdin; print '|pkg.Type| <text format>' for each message",
       "Decrypt bodies (AES-256-CTR)", options, run_decode);
   decode->add_option("-t,--type", options.type_name,
                      "Decode as this type (required for omit_id types, which carry no id)");
+  decode->footer(std::string("Example:\n  ") + kDecodeExample);
 
   CLI::App* analyze = dccl->add_subcommand(
       "analyze", "Print a type's bit budget per field, head and body sizes, min/max size");
   add_schema_options(analyze, options);
   analyze->add_option("-t,--type", options.type_name, "Full type name, e.g. gv.NavigationReport")
       ->required();
+  analyze->footer(std::string("Example:\n  ") + kAnalyzeExample);
   analyze->callback([] { run_analyze(options); });
 }
 

@@ -120,6 +120,10 @@ CLI::App* add_gram_command(CLI::App& app, const GlobalOptions& global) {
       "gram", "The acoustic model: offline (ssp, tl, arrivals: sound speed from a CTD cast, transmission "
               "loss and arrivals from a BELLHOP-format environment), or the daemon's (depth, env)");
   gram->require_subcommand(1);
+  gram->footer(
+      "Examples:\n"
+      "  acommsctl gram tl --env examples/glint10.env --png tl.png\n"
+      "  acommsctl gram depth --range 3000 --speed 1.5 --max-depth 90");
 
   CLI::App* ssp = gram->add_subcommand(
       "ssp", "Print the sound speed profile (depth_m,speed_mps) of a CTD cast: a CSV with columns "
@@ -131,6 +135,7 @@ CLI::App* add_gram_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   ssp->add_flag("--mackenzie", options.mackenzie, "Mackenzie 1981 instead of UNESCO (Chen-Millero)");
+  ssp->footer("Example:\n  acommsctl gram ssp --ctd cast.csv --bin 2 --thin 0.05 > profile.csv");
   ssp->callback([] { run_ssp(options); });
 
   CLI::App* tl = gram->add_subcommand(
@@ -139,6 +144,10 @@ CLI::App* add_gram_command(CLI::App& app, const GlobalOptions& global) {
   tl->add_option("--env", options.env, "BELLHOP-format environment")->required()->type_name("FILE.env");
   tl->add_option("--png", options.png, "Draw TL against range and depth, with the profile, to this PNG")->type_name("FILE");
   tl->add_option("--threads", options.threads, "Threads (0: all cores); the result is the same")->capture_default_str();
+  tl->footer(
+      "Examples:\n"
+      "  acommsctl gram tl --env examples/glint10.env > tl.csv\n"
+      "  acommsctl gram tl --env examples/glint10.env --png tl.png");
   tl->callback([] { run_tl(options); });
 
   CLI::App* arrivals = gram->add_subcommand(
@@ -146,6 +155,7 @@ CLI::App* add_gram_command(CLI::App& app, const GlobalOptions& global) {
                   "RMS delay spread");
   arrivals->add_option("--env", options.env, "BELLHOP-format environment")->required()->type_name("FILE.env");
   arrivals->add_option("--at", options.at, "The receiver: range (m) and depth (m)")->required()->type_name("RANGE_M,DEPTH_M");
+  arrivals->footer("Example:\n  acommsctl gram arrivals --env examples/glint10.env --at 2000,50");
   arrivals->callback([] { run_arrivals(options); });
 
   add_gram_service_commands(*gram, global);

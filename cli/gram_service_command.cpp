@@ -148,7 +148,7 @@ void add_gram_service_commands(CLI::App& gram, const GlobalOptions& options) {
   static DepthOptions depth_options;
   static EnvOptions env_options;
   CLI::App* depth = gram.add_subcommand(
-      "depth", "Ask the daemon for the depth objective over depth (seed eq. 4.1-4.4, 4.7) and the best depth "
+      "depth", "Ask the daemon for the depth objective over depth (Schneider (2013) eq. 4.1-4.4, 4.7) and the best depth "
                "within the vehicle's limits");
   auto& d = depth_options;
   depth->add_option("--range", d.range_m, "Current range to the other node (m)")->required();
@@ -178,7 +178,12 @@ void add_gram_service_commands(CLI::App& gram, const GlobalOptions& options) {
 
   CLI::App* env = gram.add_subcommand("env", "The environment the daemon holds: show it, or feed it CTD casts");
   env->require_subcommand(1);
+  env->footer(
+      "Examples:\n"
+      "  acommsctl gram env show\n"
+      "  acommsctl gram env update --ctd cast.csv");
   CLI::App* show = env->add_subcommand("show", "Print the base environment and the profile instances held");
+  show->footer("Example:\n  acommsctl gram env show --json");
   show->callback([&options] { run_env_show(options); });
   CLI::App* update = env->add_subcommand("update", "Add a CTD cast (raw samples, CSV) as a profile instance");
   update->add_option("--ctd", env_options.ctd, "The cast: depth_m or p_dbar, t90_degc, s_psu or conductivity_ms_per_cm, lat_deg")
@@ -186,6 +191,10 @@ void add_gram_service_commands(CLI::App& gram, const GlobalOptions& options) {
   update->add_option("--time", env_options.time_s, "When the cast was taken (s since the epoch; 0: now)")
       ->capture_default_str();
   update->add_flag("--clear", env_options.clear, "Drop the instances held first");
+  update->footer(
+      "Examples:\n"
+      "  acommsctl gram env update --ctd cast.csv --time 1764000000\n"
+      "  acommsctl gram env update --clear --ctd cast.csv");
   update->callback([&options] { run_env_update(env_options, options); });
 }
 

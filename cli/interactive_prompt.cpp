@@ -222,7 +222,7 @@ std::unique_ptr<gp::Message> prompt_message(TypeSchema& schema, const PromptStre
 
 bool confirm_send(const gp::Message& message, const PromptStreams& streams) {
   // Partial-safe: required fields the daemon fills (source, time) are unset here.
-  std::string json = dccl::to_json(message, /*pretty=*/true);
+  std::string json = dccl::indented_message_json(message);
   streams.out << json << (json.empty() || json.back() != '\n' ? "\n" : "") << "send? [y/N] " << std::flush;
   std::string answer;
   if (!read_line(streams, &answer)) return false;

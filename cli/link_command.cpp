@@ -193,7 +193,7 @@ void add_link_command(CLI::App& app, const GlobalOptions& global) {
       "effect at the next cycle boundary and lasts until the daemon restarts. Every node of a fixed "
       "TDMA network must be given the same cycle.\n\n"
       "Examples:\n"
-      "  acommsctl link cycle 1@1/10 2:1@1/10      node 1 sends 10 s at rate 1, then node 2 to node 1\n"
+      "  acommsctl link cycle 1@1/10 2:1@1/10   # node 1 sends 10 s at rate 1, then node 2 to node 1\n"
       "  acommsctl link cycle --json '[{\"src\":1,\"rate\":1,\"seconds\":10},{\"src\":2,\"dest\":1,\"rate\":1,\"seconds\":10}]'");
   cycle->callback([&global] { run_cycle(global, cycle_options); });
 }

@@ -74,12 +74,6 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   // Global options may also follow the subcommand: `acommsctl status --json`.
   app.fallthrough();
-  app.footer(
-      "Example workflow:\n"
-      "  acommsctl defs load /etc/acommsd/nav.proto && acommsctl send gv.NavigationReport x=10 y=-5 z=-20 "
-      "&& acommsctl queue ls && acommsctl events --since -10m\n"
-      "Run `acommsctl COMMAND --help` for a command's options and examples.\n"
-      "Exit status: 0 done, 1 the daemon refused or could not be reached, 2 bad usage.");
 
   acomms::cli::GlobalOptions options;
   options.endpoint = acomms::cli::default_socket();
@@ -95,6 +89,14 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("acommsctl ") + ACOMMS_VERSION);
 
   add_commands(app, options);
+  // Set after the commands are added: CLI11 copies a parent's footer into
+  // each subcommand made after it, and every command has its own examples.
+  app.footer(
+      "Example workflow:\n"
+      "  acommsctl defs load /etc/acommsd/nav.proto && acommsctl send gv.NavigationReport x=10 y=-5 z=-20 "
+      "&& acommsctl queue ls && acommsctl events --since -10m\n"
+      "Run `acommsctl COMMAND --help` for a command's options and examples.\n"
+      "Exit status: 0 done, 1 the daemon refused or could not be reached, 2 bad usage.");
 
   try {
     app.parse(argc, argv);

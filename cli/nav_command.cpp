@@ -125,7 +125,7 @@ void add_nav_command(CLI::App& app, const GlobalOptions& global) {
       "telemetry.receiver; the sim driver also places this node at the newest fix.\n\n"
       "Examples:\n"
       "  printf 'time,lat,lon,depth\\n1764000000,41.52,-70.67,12\\n' | acommsctl nav\n"
-      "  gpsd-to-csv | acommsctl nav");
+      "  tail -n +1 -f fixes.csv | acommsctl nav");
   nav->callback([&global] { run_nav(global); });
 }
 

@@ -10,7 +10,7 @@
 
 namespace acomms::cli {
 
-std::string to_json(const google::protobuf::Message& message) {
+std::string json_with_defaults(const google::protobuf::Message& message) {
   google::protobuf::util::JsonPrintOptions options;
   options.preserve_proto_field_names = true;
   options.always_print_primitive_fields = true;
@@ -19,7 +19,7 @@ std::string to_json(const google::protobuf::Message& message) {
   return json;
 }
 
-void print_json(const google::protobuf::Message& message) { std::cout << to_json(message) << "\n"; }
+void print_json(const google::protobuf::Message& message) { std::cout << json_with_defaults(message) << "\n"; }
 
 std::string json_quote(const std::string& text) {
   std::string out = "\"";

@@ -10,11 +10,13 @@
 
 namespace acomms::cli {
 
-// MessageToJsonString with proto field names and defaults printed (a zero
-// counter is a fact worth showing, not an absent field).
-std::string to_json(const google::protobuf::Message& message);
+// An API message (a reply, or part of one) as one line of JSON with proto
+// field names and every field printed, defaults too (a zero counter is a
+// fact worth showing, not an absent field). DCCL messages a person sent or
+// received are printed by dccl::message_json instead (set fields only).
+std::string json_with_defaults(const google::protobuf::Message& message);
 
-// to_json plus a newline on stdout.
+// json_with_defaults plus a newline on stdout.
 void print_json(const google::protobuf::Message& message);
 
 // `text` as a JSON string literal, quotes included.

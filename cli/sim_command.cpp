@@ -53,6 +53,7 @@ void add_queue_market_command(CLI::App* sim) {
   market->add_option("--tau", options.config.tau_s, "tau: seconds between transmissions")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  market->footer("Example:\n  acommsctl sim queue-market --tau-s-ratio 10 --trials 200 --p-empty 0,0.5,0.9");
   market->callback([] {
     std::vector<eval::MarketPoint> points = eval::simulate_market(options.config, options.p_empty);
     std::cout << eval::format_market_csv(points) << std::flush;
@@ -230,6 +231,10 @@ void add_mac_discovery_command(CLI::App* sim) {
                       "Monte Carlo: power-on times spread over this many full-network cycles")
       ->check(CLI::Range(0.0, 1e4))
       ->capture_default_str();
+  command->footer(
+      "Examples:\n"
+      "  acommsctl sim mac-discovery --ids 1,2 --slot 15 --coolness 3 --start 0 --blank-rule figure\n"
+      "  acommsctl sim mac-discovery --monte-carlo --sizes 3-6 --coolness 4-7 --p-collide 1 --trials 200");
   command->callback([] {
     try {
       run_mac_discovery(options);
@@ -244,6 +249,10 @@ void add_mac_discovery_command(CLI::App* sim) {
 CLI::App* add_sim_command(CLI::App& app, const GlobalOptions& options) {
   CLI::App* sim = app.add_subcommand("sim", "Offline simulations (no daemon needed)");
   sim->require_subcommand(1);
+  sim->footer(
+      "Examples:\n"
+      "  acommsctl sim queue-market --trials 200\n"
+      "  acommsctl sim mac-discovery --ids 1,2 --slot 15");
   add_queue_market_command(sim);
   add_mac_discovery_command(sim);
   add_sim_telemetry_command(sim, options);

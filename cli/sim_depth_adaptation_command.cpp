@@ -160,6 +160,10 @@ void add_sim_depth_adaptation_command(CLI::App* sim, const GlobalOptions& global
       ->capture_default_str();
   command->add_option("--snr50", o.snr50_db, "SNR (dB) at which half the packets decode (default: 10 rate 0, 14 PSK)");
   command->add_option("--slope", o.slope_per_db, "Logistic slope of the reception curve, 1/dB")->capture_default_str();
+  command->footer(
+      "Examples:\n"
+      "  acommsctl sim depth-adaptation --env examples/glint10.env --png receipt.png\n"
+      "  acommsctl --json sim depth-adaptation --env examples/glint10.env --depths 10,50,90 --laps 5");
   command->callback([&global] {
     try {
       run(o, global);

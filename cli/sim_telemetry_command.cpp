@@ -132,6 +132,10 @@ void add_sim_telemetry_command(CLI::App* sim, const GlobalOptions& global) {
       ->check(CLI::Range(64u, 1u << 20))
       ->capture_default_str();
   command->add_option("--seed", options.loss.seed, "Random seed for --loss and --generate")->capture_default_str();
+  command->footer(
+      "Examples:\n"
+      "  acommsctl sim telemetry --track examples/tracks/auv_lawnmower.csv --observer kalman --model adaptive\n"
+      "  acommsctl sim telemetry --generate glider --duration 86400 --seed 3 > glider.csv");
   command->callback([&global] {
     try {
       run(options, global);

@@ -102,7 +102,7 @@ std::string line_for(const v1::ReceivedMessage& received) {
   const std::string& message = received.json().empty() ? std::string("null") : received.json();
   return "{\"type\":" + json_quote(received.type()) + ",\"src\":" + std::to_string(received.src()) +
          ",\"dest\":" + std::to_string(received.dest()) + ",\"receive_time\":" + number_text(received.receive_time()) +
-         ",\"message\":" + message + ",\"link\":" + to_json(received.link()) +
+         ",\"message\":" + message + ",\"link\":" + json_with_defaults(received.link()) +
          ",\"seq\":" + std::to_string(received.seq()) + "}";
 }
 

@@ -2,7 +2,7 @@
 //
 // Problem: an acoustic modem cares about the multipath: when each path
 // arrives, how strong, from which angle, after how many bounces, and how
-// long the channel's impulse response is (seed eq. 4.5).
+// long the channel's impulse response is (Schneider (2013) eq. 4.5).
 // Decision (spec §5): every ray segment that gives a receiver a non-zero
 // hat weight yields a candidate; candidates from consecutive rays of the
 // fan with the same bounce and caustic counts and delays within 1/(10 f) are
@@ -48,7 +48,7 @@ struct DelaySpread {
   std::size_t arrivals_used = 0;
 };
 
-// Seed eq. 4.5 over the arrivals down to `floor_db` below the strongest.
+// Schneider (2013) eq. 4.5 over the arrivals down to `floor_db` below the strongest.
 DelaySpread rms_delay_spread(const std::vector<Arrival>& arrivals, double floor_db = 60.0);
 
 }  // namespace acomms::gram

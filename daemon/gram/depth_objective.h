@@ -1,5 +1,6 @@
-// The depth objective of GRAM (seed ch. 4, spec §6): which depth should the
-// vehicle hold to hear the other node over the next τ_a seconds?
+// The depth objective of GRAM (Schneider (2013) ch. 4, spec §6): which
+// depth should the vehicle hold to hear the other node over the next τ_a
+// seconds?
 //
 // Problem: the model gives TL on a grid for each measured sound-speed
 // profile; the vehicle needs one depth. Decision, in this order:

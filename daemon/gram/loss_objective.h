@@ -1,4 +1,5 @@
-// The depth objective from range-averaged loss (seed eq. 4.3, spec §6.2).
+// The depth objective from range-averaged loss (Schneider (2013) eq. 4.3,
+// spec §6.2).
 //
 // Problem: the vehicle needs a score in [0, 1] per depth, 1 for a lossless
 // channel, 0 for a depth where messages are not expected to arrive.

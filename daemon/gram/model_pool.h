@@ -1,5 +1,6 @@
-// GRAM's worker pool: model runs off the gRPC and core threads (seed §4.2:
-// a program asks asynchronously and keeps working with its last answer).
+// GRAM's worker pool: model runs off the gRPC and core threads (Schneider
+// (2013) §4.2: a program asks asynchronously and keeps working with its last
+// answer).
 //
 // The contract, for the gRPC service and for in-process callers (the
 // simulator asks it for TL grids):

@@ -4,11 +4,11 @@
 // same paths as sound from the surface; below the critical depth (where the
 // sound speed regains the maximum found above the channel axis) those paths
 // are cut and the noise level falls, so a deep vehicle hears better than H̄
-// alone says. Decision, after the seed's example: NL(d) = NL₀ down to the
-// critical depth d_c, then NL₀ − g_NL (d − d_c) with g_NL in dB/km (spec
-// default 3 dB/km). d_c is found on the profile's points with c linear
-// between them (for a spline profile this approximates within one node
-// interval, well inside the model's noise uncertainty). No critical depth
+// alone says. Decision, after the example of Schneider (2013): NL(d) = NL₀
+// down to the critical depth d_c, then NL₀ − g_NL (d − d_c) with g_NL in
+// dB/km (spec default 3 dB/km). d_c is found on the profile's points with
+// c linear between them (for a spline profile this approximates within one
+// node interval, well inside the model's noise uncertainty). No critical depth
 // (the profile never regains the speed, e.g. shallow water, or its least
 // speed is at the surface, so there is no channel): NL is constant,
 // as the thesis's modelling of shallow water (≈ 1 dB variation) supports.

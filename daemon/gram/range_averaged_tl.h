@@ -1,5 +1,6 @@
-// Range-averaged transmission loss H̄(d) (seed eq. 4.2, spec §6.2) and its
-// average over sound-speed profile instances (eq. 4.4, spec §6.3).
+// Range-averaged transmission loss H̄(d) (Schneider (2013) eq. 4.2, spec
+// §6.2) and its average over sound-speed profile instances (eq. 4.4, spec
+// §6.3).
 //
 // Problem: pointwise TL flickers by tens of dB between interference nulls a
 // vehicle cannot steer by; what it can use is the loss it will see on

@@ -1,4 +1,5 @@
-// The range window of the depth objective (seed eq. 4.1, spec §6.1).
+// The range window of the depth objective (Schneider (2013) eq. 4.1, spec
+// §6.1).
 //
 // Problem: the depth a vehicle should hold depends on the ranges it will
 // cross before the model is asked again, not on its range now. Decision:

@@ -1,5 +1,5 @@
-// Passive sonar equation (seed eq. 4.7, spec §6.5) and the signal-excess
-// objective.
+// Passive sonar equation (Schneider (2013) eq. 4.7, spec §6.5) and the
+// signal-excess objective.
 //
 // Problem: H̄ alone is a proxy for SNR only where the noise does not vary
 // with depth (shallow water); with a source level and a noise level the

@@ -1,6 +1,6 @@
-// The environment the vehicle knows (seed §4.2–§4.3): a base from the
-// config (bottom, bathymetry, frequency, source, receivers), updated at
-// run time with the CTD casts the vehicle takes. Each cast's raw samples
+// The environment the vehicle knows (Schneider (2013) §4.2–§4.3): a base
+// from the config (bottom, bathymetry, frequency, source, receivers),
+// updated at run time with the CTD casts the vehicle takes. Each cast's raw samples
 // are binned into a profile, merged into the base profile inside the
 // cast's depth span (gram/profile_merge.h) and kept as one instance;
 // instances older than the window before the newest are dropped

@@ -12,6 +12,7 @@
 #include "acomms/v1/acomms.grpc.pb.h"
 #include "core/event_loop.h"
 #include "dccl/codec.h"
+#include "dccl/message_json.h"
 #include "link/driver_supervisor.h"
 #include "link/link_controller.h"
 #include "mac/mac.h"
@@ -19,7 +20,6 @@
 #include "queue/queue_manager.h"
 #include "queue/submitter.h"
 #include "service/definition_loader.h"
-#include "service/message_json.h"
 #include "service/subscriber_hub.h"
 #include "telemetry/telemetry_node.h"
 #include "telemetry/track_reader.h"
@@ -113,7 +113,7 @@ class AcommsService final : public v1::Acomms::WithCallbackMethod_Submit<v1::Aco
   DaemonIdentity identity_;
   Node node_;
   std::chrono::steady_clock::time_point started_;
-  mutable JsonReader json_reader_;
+  mutable dccl::JsonReader json_reader_;
 };
 
 }  // namespace acomms::service

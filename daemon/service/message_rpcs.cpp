@@ -1,9 +1,9 @@
 // Submit, Encode and Decode: the calls that take a message from a client.
 #include <cmath>
 
+#include "dccl/message_json.h"
 #include "service/acomms_service.h"
 #include "service/rpc_status.h"
-#include "service/message_json.h"
 
 namespace acomms::service {
 namespace {
@@ -129,7 +129,7 @@ grpc::Status AcommsService::Decode(grpc::ServerContext*, const v1::DecodeRequest
       v1::DecodedMessage* out = response->add_messages();
       out->set_type(message->GetDescriptor()->full_name());
       out->set_payload(message->SerializePartialAsString());
-      out->set_json(to_json(*message));
+      out->set_json(dccl::message_json(*message));
     }
   } catch (const dccl::Error& e) {
     return {grpc::StatusCode::INVALID_ARGUMENT, e.what()};

@@ -1,6 +1,6 @@
 #include "service/position_message.h"
 
-#include "service/message_json.h"
+#include "dccl/message_json.h"
 
 namespace acomms::service {
 
@@ -25,7 +25,7 @@ v1::ReceivedMessage to_received_message(const telemetry::Position& position, int
   v1::ReceivedMessage out;
   out.set_type(kPositionType);
   out.set_payload(position.SerializeAsString());
-  out.set_json(to_json(position));
+  out.set_json(dccl::message_json(position));
   out.set_src(position.src());
   out.set_dest(own_id);
   out.set_receive_time(now);

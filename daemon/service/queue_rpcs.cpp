@@ -1,6 +1,6 @@
 // ListQueued, Cancel, Flush and QueueStats: what waits for the link.
+#include "dccl/message_json.h"
 #include "service/acomms_service.h"
-#include "service/message_json.h"
 #include "service/rpc_status.h"
 #include "util/seconds.h"
 
@@ -65,7 +65,7 @@ grpc::Status AcommsService::ListQueued(grpc::ServerContext*, const v1::ListQueue
   });
   for (Row& row : rows) {
     std::unique_ptr<google::protobuf::Message> message = node_.codec.new_message(row.message.type());
-    if (message->ParsePartialFromString(row.payload)) row.message.set_json(to_json(*message));
+    if (message->ParsePartialFromString(row.payload)) row.message.set_json(dccl::message_json(*message));
     *response->add_messages() = std::move(row.message);
   }
   response->set_truncated(truncated);

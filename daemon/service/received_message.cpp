@@ -1,7 +1,7 @@
 #include "service/received_message.h"
 
+#include "dccl/message_json.h"
 #include "link/link_figures.h"
-#include "service/message_json.h"
 
 namespace acomms::service {
 
@@ -10,7 +10,7 @@ v1::ReceivedMessage to_received_message(const queue::ReceivedMessage& message,
   v1::ReceivedMessage out;
   out.set_type(message.type);
   out.set_payload(message.message->SerializePartialAsString());
-  out.set_json(to_json(*message.message));
+  out.set_json(dccl::message_json(*message.message));
   out.set_src(message.src);
   out.set_dest(message.dest);
   out.set_receive_time(message.time);

@@ -21,10 +21,10 @@
 
 #include <google/protobuf/descriptor.h>
 
+#include "dccl/message_json.h"
 #include "service/acomms_service.h"
 #include "service/position_message.h"
 #include "telemetry/wire_message.h"
-#include "service/message_json.h"
 #include "service/rpc_status.h"
 
 namespace acomms::service {
@@ -50,7 +50,7 @@ v1::ReceivedMessage from_store(const queue::StoredReceived& stored, const dccl::
   try {
     auto message = codec.decode_as(stored.type, stored.encoded);
     out.set_payload(message->SerializePartialAsString());
-    out.set_json(to_json(*message));
+    out.set_json(dccl::message_json(*message));
   } catch (const std::exception& e) {
     // Still sent (with no payload): a resuming client must see every seq.
     spdlog::warn("subscribe: stored message seq {} of type {} no longer decodes: {}", stored.seq, stored.type,

@@ -1,5 +1,6 @@
-// The seed's quantities (spec §6) against shared/conformance/gram §4, read
-// at run time: tolerances 1e-4 on objectives, 1e-3 dB on H̄ and SE.
+// The quantities of Schneider (2013) ch. 4 (spec §6) against
+// shared/conformance/gram §4, read at run time: tolerances 1e-4 on
+// objectives, 1e-3 dB on H̄ and SE.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -423,8 +422,8 @@ TEST(GramDepthObjectivePipeline, BelowTheCriticalDepthTheNoiseFallsAndTheSignalE
   EXPECT_EQ(r.best.depth_m, 5000);
 }
 
+// Its time is measured by tests/bench/depth_objective_bench.cpp.
 TEST(GramDepthObjectiveEndToEnd, ThePekerisModelRunGivesABestDepthInsideTheLimits) {
-  const auto start = std::chrono::steady_clock::now();
   ImportedEnvironment imported = import_bellhop_env_file(
       std::string(ACOMMS_SHARED_DIR) + "/conformance/gram/envs/pekeris_500hz.env");
   Environment env = imported.environment;
@@ -455,9 +454,6 @@ TEST(GramDepthObjectiveEndToEnd, ThePekerisModelRunGivesABestDepthInsideTheLimit
       EXPECT_LE(r.objective_filtered[i], r.best.objective + kObjectiveTie) << r.depth_m[i];
     }
   }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_LT(seconds, 5.0);  // budget ~2 s in Release; loose for loaded machines
 }
 
 }  // namespace

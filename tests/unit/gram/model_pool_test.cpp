@@ -3,14 +3,21 @@
 // pause() holds every worker, so "waiting" and "running" are states the
 // test makes, not moments it hopes to catch.
 #include <gtest/gtest.h>
-#include <sys/resource.h>
+#include <sys/types.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <future>
 #include <mutex>
+#include <set>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "gram/bellhop_import.h"
 #include "gram/model_pool.h"
@@ -250,19 +257,73 @@ TEST(GramModelPool, ABadEnvironmentIsRefusedNamingTheField) {
   EXPECT_NE(o.message.find("sound_speed[1].depth_m"), std::string::npos) << o.message;
 }
 
-// Idle workers wait on a condition variable: over a quiet interval the
-// process (whose only other threads are gtest's) uses next to no CPU.
-TEST(GramModelPool, IdleWorkersUseNoCpu) {
+// The threads of this process (/proc/self/task).
+std::set<pid_t> thread_ids() {
+  std::set<pid_t> ids;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc/self/task"))
+    ids.insert(static_cast<pid_t>(std::stol(entry.path().filename().string())));
+  return ids;
+}
+
+// What the kernel says of one thread: asleep or not, and how often it has
+// been switched out (each wake-up of a sleeper ends in one more switch).
+struct ThreadActivity {
+  bool asleep = false;
+  std::uint64_t switches = 0;
+  bool operator==(const ThreadActivity&) const = default;
+};
+
+ThreadActivity activity(pid_t thread) {
+  std::ifstream status("/proc/self/task/" + std::to_string(thread) + "/status");
+  ThreadActivity a;
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind("State:", 0) == 0) a.asleep = line.find("S (sleeping)") != std::string::npos;
+    if (line.rfind("voluntary_ctxt_switches:", 0) == 0 || line.rfind("nonvoluntary_ctxt_switches:", 0) == 0)
+      a.switches += std::stoull(line.substr(line.find(':') + 1));
+  }
+  return a;
+}
+
+std::vector<ThreadActivity> activity(const std::vector<pid_t>& threads) {
+  std::vector<ThreadActivity> all;
+  for (pid_t t : threads) all.push_back(activity(t));
+  return all;
+}
+
+// Idle workers wait on a condition variable: once asleep, an idle worker is
+// never woken (a worker that polled, even rarely, would be switched in and
+// out again). Counted by the kernel's context switches of each worker
+// thread, not by time: a slow machine only lengthens the quiet interval.
+TEST(GramModelPool, IdleWorkersSleepUntilWorkArrives) {
+  const std::set<pid_t> before = thread_ids();
   ModelPool pool({4, 16, 1 << 20}, make_builtin_engine());
-  auto cpu_s = [] {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec + 1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-  };
-  const double before = cpu_s();
-  std::this_thread::sleep_for(300ms);  // the interval measured, not a wait for another thread
-  EXPECT_LT(cpu_s() - before, 0.02);
   EXPECT_EQ(pool.stats().workers, 4u);
+  std::vector<pid_t> workers;
+  for (pid_t t : thread_ids())
+    if (!before.contains(t)) workers.push_back(t);
+  ASSERT_EQ(workers.size(), 4u);
+  // Started: every worker asleep, and no switch between two looks.
+  std::vector<ThreadActivity> settled = activity(workers);
+  bool started = false;
+  for (int look = 0; look < 1000 && !started; ++look) {
+    std::this_thread::sleep_for(10ms);
+    std::vector<ThreadActivity> now = activity(workers);
+    started = now == settled && std::all_of(now.begin(), now.end(), [](const auto& a) { return a.asleep; });
+    settled = now;
+  }
+  ASSERT_TRUE(started) << "the workers never went to sleep";
+
+  std::this_thread::sleep_for(300ms);  // a quiet interval: no request, so no wake-up
+  EXPECT_EQ(activity(workers), settled) << "an idle worker was woken";
+
+  // And the count does see a wake-up: work wakes a worker.
+  Answer answer;
+  pool.submit(tl_request(), "", answer.done());
+  ASSERT_EQ(answer.get().status, ModelStatus::kOk);
+  std::uint64_t switches_before = 0, switches_after = 0;
+  for (const auto& a : settled) switches_before += a.switches;
+  for (const auto& a : activity(workers)) switches_after += a.switches;
+  EXPECT_GT(switches_after, switches_before);
 }
 
 TEST(GramModelPool, DestroyingThePoolAnswersWaitingRequests) {

@@ -1,8 +1,9 @@
-// JsonReader and to_json (daemon/service/message_json.h): DCCL types parsed
-// from JSON without insisting on required fields, clear reasons for bad
-// JSON and unknown fields, enums by name, proto field names on output.
+// JsonReader, message_json and indented_message_json (dccl/message_json.h):
+// DCCL types parsed from JSON without insisting on required fields, clear
+// reasons for bad JSON and unknown fields, enums by name, proto field names
+// on output.
 
-#include "service/message_json.h"
+#include "dccl/message_json.h"
 
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/message.h>
@@ -17,7 +18,7 @@
 
 #include "dccl/codec.h"
 
-namespace acomms::service {
+namespace acomms::dccl {
 namespace {
 
 namespace fs = std::filesystem;
@@ -61,7 +62,7 @@ class JsonReaderTest : public ::testing::Test {
   }
 
   fs::path dir_;
-  dccl::Codec codec_;
+  Codec codec_;
   JsonReader reader_;
 };
 
@@ -141,11 +142,11 @@ TEST_F(JsonReaderTest, WrongValueTypeIsReported) {
   EXPECT_FALSE(why.empty());
 }
 
-TEST_F(JsonReaderTest, ToJsonUsesProtoFieldNamesAndLeavesDefaultsOut) {
+TEST_F(JsonReaderTest, MessageJsonUsesProtoFieldNamesAndLeavesDefaultsOut) {
   auto message = report();
   ASSERT_EQ(reader_.parse(R"({"count": 5, "depth_m": 0, "battery_ok": true, "mode": "IDLE"})", message.get()),
             "");
-  std::string json = to_json(*message);
+  std::string json = message_json(*message);
   EXPECT_NE(json.find("\"battery_ok\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"IDLE\""), std::string::npos) << json;
   EXPECT_EQ(json.find("fix"), std::string::npos) << "an unset field was printed: " << json;
@@ -155,10 +156,27 @@ TEST_F(JsonReaderTest, ToJsonUsesProtoFieldNamesAndLeavesDefaultsOut) {
   EXPECT_EQ(again->SerializePartialAsString(), message->SerializePartialAsString());
 }
 
+// The client's JSON is one line (a reply field, a line of `acommsctl sub`);
+// the prompt's is indented for a person; both read back to the message.
+TEST_F(JsonReaderTest, MessageJsonIsOneLineAndIndentedMessageJsonTheSameOverSeveral) {
+  auto message = report();
+  ASSERT_EQ(reader_.parse(R"({"count": 5, "fix": {"quality": 3}})", message.get()), "");
+  const std::string line = message_json(*message);
+  const std::string indented = indented_message_json(*message);
+  EXPECT_EQ(line, R"({"count":5,"fix":{"quality":3}})");
+  EXPECT_NE(indented.find('\n'), std::string::npos) << indented;
+  EXPECT_NE(indented.find("\n \"count\": 5,\n"), std::string::npos) << indented;
+  for (const std::string& json : {line, indented}) {
+    auto again = report();
+    ASSERT_EQ(reader_.parse(json, again.get()), "") << json;
+    EXPECT_EQ(again->SerializePartialAsString(), message->SerializePartialAsString()) << json;
+  }
+}
+
 // A DCCL field with (dccl.field).omit is not on the wire, so a decoded
-// message can lack a required field. Such messages reach to_json on the
+// message can lack a required field. Such messages reach message_json on the
 // core thread (Subscribe) and in Decode: it must not throw.
-TEST_F(JsonReaderTest, ToJsonOfADecodedMessageWithAnOmittedRequiredFieldDoesNotThrow) {
+TEST_F(JsonReaderTest, MessageJsonOfADecodedMessageWithAnOmittedRequiredFieldDoesNotThrow) {
   std::ofstream(dir_ / "omit.proto") << R"(syntax = "proto2";
 import "dccl/option_extensions.proto";
 package jo;
@@ -176,9 +194,9 @@ message Local {
   ASSERT_FALSE(decoded[0]->IsInitialized()) << "omitted field came back: nothing to test";
   std::string json;
   try {
-    json = to_json(*decoded[0]);
+    json = message_json(*decoded[0]);
   } catch (const std::exception& e) {
-    FAIL() << "to_json threw: " << e.what();
+    FAIL() << "message_json threw: " << e.what();
   }
   EXPECT_NE(json.find("\"kept\":42"), std::string::npos) << json;
 }
@@ -200,4 +218,4 @@ TEST_F(JsonReaderTest, ConcurrentParsesAgree) {
 }
 
 }  // namespace
-}  // namespace acomms::service
+}  // namespace acomms::dccl
