@@ -1,4 +1,4 @@
-#include "gram_setup.h"
+#include "node/gram_setup.h"
 
 #include <spdlog/spdlog.h>
 
@@ -9,7 +9,7 @@
 
 #include "gram/bellhop_engine.h"
 
-namespace acomms {
+namespace acomms::node {
 namespace {
 
 constexpr unsigned kDefaultWorkers = 1;
@@ -105,4 +105,4 @@ service::SaveEnvironment save_environment_to(store::GroupCommitWriter& writer) {
   };
 }
 
-}  // namespace acomms
+}  // namespace acomms::node

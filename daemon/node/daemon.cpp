@@ -1,4 +1,4 @@
-#include "daemon.h"
+#include "node/daemon.h"
 
 #include <spdlog/spdlog.h>
 
@@ -7,11 +7,11 @@
 
 #include "core/systemd_notify.h"
 #include "mac/mac_factory.h"
-#include "message_definitions.h"
+#include "node/codec_setup.h"
 #include "service/position_message.h"
 #include "service/received_message.h"
 
-namespace acomms {
+namespace acomms::node {
 
 Daemon::Daemon(const v1::Config& config) : config_(config) {
   // A start that fails half way (the TCP port is taken, say) must stop what
@@ -46,8 +46,8 @@ void Daemon::start() {
   }
   telemetry::configure_queues(config_.mutable_queue(), telemetry_settings_);
   store_ = std::make_unique<store::Store>(config_.data_dir());
-  std::vector<service::RecordedDefinition> api_definitions =
-      service::DefinitionLoader::read_recorded(store_->db());
+  std::vector<RecordedDefinition> api_definitions =
+      DefinitionLoader::read_recorded(store_->db());
   const telemetry::StoredStreams telemetry_stored = telemetry::TelemetryNode::read_state(store_->db());
   gram_ = make_gram(config_.gram(), config_.data_dir(), store_->db());
   // From here on only the writer's thread touches the store's connection.
@@ -57,7 +57,7 @@ void Daemon::start() {
   events_ = std::make_unique<queue::EventLogReader>(store_->db().path());
   codec_ = make_codec(config_.dccl());
   // Before the queues restore: messages of these types are in the journal.
-  service::DefinitionLoader::load_recorded(*codec_, api_definitions);
+  DefinitionLoader::load_recorded(*codec_, api_definitions);
   try {
     queues_ = std::make_unique<queue::QueueManager>(*codec_, config_.queue(),
                                                     static_cast<int32_t>(config_.driver().modem_id()),
@@ -66,7 +66,7 @@ void Daemon::start() {
     throw std::runtime_error(std::string("queue config: ") + e.what());
   }
   queues_->restore();
-  definitions_ = std::make_unique<service::DefinitionLoader>(
+  definitions_ = std::make_unique<DefinitionLoader>(
       *codec_, *queues_, *writer_, (std::filesystem::path(config_.data_dir()) / "definitions").string());
   core_ = std::make_unique<core::EventLoop>();
   submitter_ = std::make_unique<queue::Submitter>(
@@ -299,4 +299,4 @@ void Daemon::stop() {
   spdlog::info("acommsd stopped");
 }
 
-}  // namespace acomms
+}  // namespace acomms::node

@@ -17,6 +17,8 @@
 #include "link/link_controller.h"
 #include "link/raw_log.h"
 #include "mac/mac.h"
+#include "node/definition_loader.h"
+#include "node/gram_setup.h"
 #include "dccl/codec.h"
 #include "queue/durable_receipts.h"
 #include "queue/queue_manager.h"
@@ -25,18 +27,16 @@
 #include "queue/sqlite_journal.h"
 #include "queue/submitter.h"
 #include "store/group_commit_writer.h"
-#include "gram_setup.h"
 #include "service/gram_service.h"
 #include "service/grpc_server.h"
 #include "service/acomms_service.h"
-#include "service/definition_loader.h"
 #include "service/subscriber_hub.h"
 #include "store/store.h"
 #include "core/node_position.h"
 #include "telemetry/telemetry_node.h"
 #include "telemetry/track_reader.h"
 
-namespace acomms {
+namespace acomms::node {
 
 class Daemon {
  public:
@@ -72,7 +72,7 @@ class Daemon {
   std::unique_ptr<dccl::Codec> codec_;
   // Owned by the core thread once it runs.
   std::unique_ptr<queue::QueueManager> queues_;
-  std::unique_ptr<service::DefinitionLoader> definitions_;
+  std::unique_ptr<DefinitionLoader> definitions_;
   service::SubscriberHub subscribers_;
   std::unique_ptr<core::EventLoop> core_;
   // Submit's way into the queues, through the core thread.
@@ -101,4 +101,4 @@ class Daemon {
   std::unique_ptr<service::GrpcServer> server_;
 };
 
-}  // namespace acomms
+}  // namespace acomms::node
