@@ -19,6 +19,7 @@
 #include "mac/mac.h"
 #include "node/definition_loader.h"
 #include "node/gram_setup.h"
+#include "node/received_message_router.h"
 #include "dccl/codec.h"
 #include "queue/durable_receipts.h"
 #include "queue/queue_manager.h"
@@ -65,9 +66,6 @@ class Daemon {
   std::unique_ptr<store::Store> store_;
   std::unique_ptr<store::GroupCommitWriter> writer_;
   std::unique_ptr<queue::SqliteJournal> journal_;
-  // Received messages are published through this (queue/durable_receipts.h):
-  // their own chain, apart from the ACKs'.
-  queue::WhenStored publish_when_stored_;
   std::unique_ptr<queue::EventLogReader> events_;
   std::unique_ptr<dccl::Codec> codec_;
   // Owned by the core thread once it runs.
@@ -85,6 +83,9 @@ class Daemon {
   std::unique_ptr<link::RawLog> raw_log_;  // outlives link_, which writes to it
   std::unique_ptr<link::DriverSupervisor> driver_;
   std::unique_ptr<mac::Mac> mac_;
+  // Where the link's received messages go; publishes through its own
+  // when-stored chain (queue/durable_receipts.h), apart from the ACKs'.
+  std::unique_ptr<ReceivedMessageRouter> received_;
   std::unique_ptr<link::LinkController> link_;
   // Prunes the event log on the core thread's schedule, on the writer.
   std::unique_ptr<queue::EventLogRetention> retention_;
