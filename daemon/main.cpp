@@ -15,7 +15,7 @@
 #include "core/config_error.h"
 #include "core/config_loader.h"
 #include "core/logging.h"
-#include "daemon.h"
+#include "node/daemon.h"
 #include "link/slot_check.h"
 #include "telemetry/node_settings.h"
 #include "service/tls_certificates.h"
@@ -41,7 +41,7 @@ sigset_t block_handled_signals() {
 }
 
 // Serves until SIGINT or SIGTERM; each SIGHUP re-reads the certificates.
-int wait_for_stop(acomms::Daemon& daemon, const sigset_t& signals) {
+int wait_for_stop(acomms::node::Daemon& daemon, const sigset_t& signals) {
   int signal_number = 0;
   while (sigwait(&signals, &signal_number) == 0 && signal_number == SIGHUP) {
     spdlog::info("received SIGHUP, reloading TLS certificates");
@@ -111,7 +111,7 @@ int main(int argc, char** argv) {
     // The TLS files are checked before anything starts, so that a bad
     // certificate stops the daemon as cleanly as a bad config.
     if (config.grpc().has_tls()) acomms::service::TlsCertificates check(config.grpc().tls());
-    acomms::Daemon daemon(config);
+    acomms::node::Daemon daemon(config);
     int signal_number = wait_for_stop(daemon, handled_signals);
     spdlog::info("received {}, stopping", signal_number == SIGTERM ? "SIGTERM" : "SIGINT");
     daemon.stop();

@@ -1,4 +1,5 @@
-// The external BELLHOP engine (see bellhop_engine.h).
+// The external BELLHOP engine (see bellhop_engine.h), registered as
+// "bellhop" (gram/engine_registry.h).
 #include "gram/bellhop_engine.h"
 
 #include <stdlib.h>
@@ -13,6 +14,7 @@
 #include <system_error>
 
 #include "gram/bellhop_export.h"
+#include "gram/engine_registry.h"
 #include "gram/environment_validation.h"
 #include "gram/external_process.h"
 #include "gram/shd_file.h"
@@ -98,6 +100,15 @@ class BellhopEngine final : public ModelEngine {
  private:
   BellhopOptions options_;
 };
+
+// An external engine: the daemon gives it the program (gram.bellhop_path),
+// a run directory under its data dir and gram.engine_timeout_s.
+const EngineRegistrar registrar(
+    "bellhop",
+    [](const EngineSettings& settings) {
+      return make_bellhop_engine({settings.executable, settings.work_root, settings.timeout});
+    },
+    EngineTraits{.external = true});
 
 }  // namespace
 

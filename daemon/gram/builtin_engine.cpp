@@ -1,4 +1,6 @@
-// The built-in model as a ModelEngine (see model_engine.h).
+// The built-in model as a ModelEngine (see model_engine.h), registered as
+// "builtin" (gram/engine_registry.h).
+#include "gram/engine_registry.h"
 #include "gram/model_engine.h"
 
 namespace acomms::gram {
@@ -14,6 +16,8 @@ class BuiltinEngine final : public ModelEngine {
     return compute_transmission_loss(env, options);
   }
 };
+
+const EngineRegistrar registrar("builtin", [](const EngineSettings&) { return make_builtin_engine(); });
 
 }  // namespace
 

@@ -15,27 +15,33 @@ DriverRegistry& linked_drivers() {
 
 const DriverRegistry& DriverRegistry::linked() { return linked_drivers(); }
 
-DriverRegistrar::DriverRegistrar(const std::string& name, DriverFactory factory) {
-  linked_drivers().add(name, std::move(factory));
+DriverRegistrar::DriverRegistrar(const std::string& name, DriverFactory factory, DriverTraits traits) {
+  linked_drivers().add(name, std::move(factory), std::move(traits));
 }
 
-void DriverRegistry::add(const std::string& name, DriverFactory factory) {
-  factories_[name] = std::move(factory);
+void DriverRegistry::add(const std::string& name, DriverFactory factory, DriverTraits traits) {
+  drivers_[name] = Entry{std::move(factory), std::move(traits)};
+}
+
+const DriverRegistry::Entry& DriverRegistry::find(const std::string& name) const {
+  auto it = drivers_.find(name);
+  if (it == drivers_.end()) {
+    std::string known;
+    for (const auto& [n, entry] : drivers_) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("no driver \"" + name + "\" (known: " + known + ")");
+  }
+  return it->second;
 }
 
 std::unique_ptr<Driver> DriverRegistry::create(const std::string& name, const DriverContext& context) const {
-  auto it = factories_.find(name);
-  if (it == factories_.end()) {
-    std::string known;
-    for (const auto& [n, f] : factories_) known += (known.empty() ? "" : ", ") + n;
-    throw std::invalid_argument("no driver \"" + name + "\" (known: " + known + ")");
-  }
-  return it->second(context);
+  return find(name).factory(context);
 }
+
+const DriverTraits& DriverRegistry::traits(const std::string& name) const { return find(name).traits; }
 
 std::vector<std::string> DriverRegistry::names() const {
   std::vector<std::string> out;
-  for (const auto& [name, factory] : factories_) out.push_back(name);
+  for (const auto& [name, entry] : drivers_) out.push_back(name);
   return out;
 }
 

@@ -81,6 +81,8 @@ std::vector<int32_t> AutoDiscoveryMac::known_ids() const {
   return ids;
 }
 
+MacStatus AutoDiscoveryMac::status() const { return MacStatus{known_ids(), blank_rule_name(config_.blank_rule)}; }
+
 AutoDiscoveryMac::Activity AutoDiscoveryMac::activity() const {
   if (!running_) return Activity::kOff;
   if (!in_cycle_) return Activity::kWaiting;

@@ -80,6 +80,8 @@ class AutoDiscoveryMac final : public Mac {
   // node and the blank). The blank slot has src 0.
   const Cycle& cycle() const override { return cycle_; }
   void on_receive(const v1::ModemTransmission& transmission) override;
+  // known_ids() and the blank rule.
+  MacStatus status() const override;
 
   int32_t own_id() const { return own_id_; }
   BlankRule blank_rule() const { return config_.blank_rule; }

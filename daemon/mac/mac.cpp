@@ -1,6 +1,7 @@
 #include "mac/mac.h"
 
 #include <cmath>
+#include <set>
 #include <stdexcept>
 
 namespace acomms::mac {
@@ -20,6 +21,14 @@ v1::ModemTransmission slot_transmission(const Slot& slot, double time_seconds) {
   transmission.set_slot_seconds(slot.seconds);
   transmission.set_time(time_seconds);
   return transmission;
+}
+
+MacStatus Mac::status() const {
+  std::set<int32_t> known;
+  for (const Slot& slot : cycle()) {
+    if (slot.src > 0) known.insert(slot.src);
+  }
+  return MacStatus{{known.begin(), known.end()}, ""};
 }
 
 void check_cycle(const Cycle& cycle, const std::string& what) {

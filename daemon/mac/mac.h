@@ -27,6 +27,13 @@ struct Slot {
 
 using Cycle = std::vector<Slot>;
 
+// What a MAC tells an operator about the network it slots for (LinkStatus):
+// each MAC fills it itself, so no caller needs to know which MAC it has.
+struct MacStatus {
+  std::vector<int32_t> known_ids;  // the nodes it knows of, ascending
+  std::string blank_rule;          // its blank-slot rule's name; empty: it has none
+};
+
 double cycle_seconds(const Cycle& cycle);
 
 // What a MAC hands the driver at the start of `slot`: src, dest, rate, type
@@ -53,6 +60,9 @@ class Mac {
   virtual const Cycle& cycle() const = 0;
   // Everything the driver received.
   virtual void on_receive(const v1::ModemTransmission& transmission) = 0;
+  // By default the nodes with a slot in cycle() and no blank rule; a MAC
+  // that learns the network says what it learned.
+  virtual MacStatus status() const;
 };
 
 }  // namespace acomms::mac

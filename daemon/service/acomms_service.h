@@ -19,7 +19,7 @@
 #include "queue/event_log_reader.h"
 #include "queue/queue_manager.h"
 #include "queue/submitter.h"
-#include "service/definition_loader.h"
+#include "service/definitions.h"
 #include "service/subscriber_hub.h"
 #include "telemetry/telemetry_node.h"
 #include "telemetry/track_reader.h"
@@ -56,7 +56,7 @@ struct Node {
   queue::Submitter& submitter;
   core::EventLoop& core;
   Link link;
-  DefinitionLoader& definitions;
+  Definitions& definitions;  // LoadDefinitions' work (the node's)
   queue::EventLogReader& events;
   SubscriberHub& subscribers;
   // Position telemetry (core thread) and the received tracks (any thread).

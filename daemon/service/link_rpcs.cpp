@@ -1,5 +1,4 @@
 // LinkStatus and SetCycle: the driver and the MAC.
-#include "mac/auto_discovery_mac.h"
 #include "mac/mac_factory.h"
 #include "service/acomms_service.h"
 
@@ -33,18 +32,11 @@ grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatu
     driver->set_modem(node_.link.driver.modem());
 
     const mac::Cycle& cycle = node_.link.mac.cycle();
-    std::set<int32_t> known;
-    for (const mac::Slot& slot : cycle) {
-      *response->add_cycle() = to_proto(slot);
-      if (slot.src > 0) known.insert(slot.src);
-    }
+    for (const mac::Slot& slot : cycle) *response->add_cycle() = to_proto(slot);
     response->set_cycle_seconds(cycle.empty() ? 0 : mac::cycle_seconds(cycle));
-    if (auto* discovery = dynamic_cast<const mac::AutoDiscoveryMac*>(&node_.link.mac)) {
-      known.clear();
-      for (int32_t id : discovery->known_ids()) known.insert(id);
-      response->set_blank_rule(mac::blank_rule_name(discovery->blank_rule()));
-    }
-    for (int32_t id : known) response->add_known_nodes(id);
+    const mac::MacStatus mac = node_.link.mac.status();
+    for (int32_t id : mac.known_ids) response->add_known_nodes(id);
+    if (!mac.blank_rule.empty()) response->set_blank_rule(mac.blank_rule);
 
     const link::LinkStats& stats = node_.link.controller.stats();
     v1::LinkCounters* counters = response->mutable_counters();

@@ -4,8 +4,8 @@
 // The seam between replay and live, and why it has neither gap nor
 // duplicate:
 //  1. A message is published to live subscriptions only after its event,
-//     carrying its seq, is committed (daemon.cpp), and messages are
-//     published in seq order.
+//     carrying its seq, is committed (node/received_message_router.h), and
+//     messages are published in seq order.
 //  2. The stream subscribes to live messages *before* it reads the store.
 //     So every message is either committed before a replay read (and the
 //     read finds it) or committed after it, and then published after the

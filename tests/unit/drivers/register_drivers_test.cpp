@@ -1,5 +1,6 @@
 // Drivers by name: every folder under plugins/drivers adds itself to
-// link::DriverRegistry::linked(), and "sim" can be rebound to one channel.
+// link::DriverRegistry::linked(), with what it says about itself (the raw
+// link log), and "sim" can be rebound to one channel.
 
 #include <gtest/gtest.h>
 
@@ -74,6 +75,22 @@ TEST(RegisterDriversTest, UnknownNameListsTheLinkedDrivers) {
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()), "no driver \"micromodem9\" (known: micromodem, sim, udp)");
   }
+}
+
+// The daemon keeps a raw link log only where the driver asks for one: the
+// Micro-Modem's sentences (4 MiB per file unless configured), not the
+// simulator's or udp's datagrams.
+TEST(RegisterDriversTest, OnlyTheMicroModemAsksForARawLogOfFourMiBUnlessConfigured) {
+  const link::DriverRegistry& registry = link::DriverRegistry::linked();
+  EXPECT_FALSE(registry.traits("sim").raw_log_bytes);
+  EXPECT_FALSE(registry.traits("udp").raw_log_bytes);
+  const auto& micromodem = registry.traits("micromodem").raw_log_bytes;
+  ASSERT_TRUE(micromodem);
+  v1::DriverConfig config;
+  EXPECT_EQ(micromodem(config), uint64_t{4} << 20);
+  config.mutable_micromodem()->set_raw_log_bytes(65536);
+  EXPECT_EQ(micromodem(config), 65536u);
+  EXPECT_THROW(registry.traits("micromodem9"), std::invalid_argument);
 }
 
 TEST(RegisterDriversTest, SimChannelDriverPutsEveryNodeOnTheChannel) {

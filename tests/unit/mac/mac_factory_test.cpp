@@ -1,4 +1,5 @@
-// make_mac: the right MAC for each name, and clear errors for bad configs.
+// make_mac: the right MAC for each name, and clear errors for bad configs;
+// each MAC reports its own status through the Mac interface.
 
 #include "mac/mac_factory.h"
 
@@ -47,6 +48,35 @@ TEST(MacFactory, AutoDiscoveryBlankRuleDefaultsToAnywhereAndEachNamePicksItsRule
   EXPECT_EQ(rule_of("blank_rule: 'anywhere'"), BlankRule::kAnywhere);
   EXPECT_EQ(rule_of("blank_rule: 'figure'"), BlankRule::kFigure);
   EXPECT_EQ(rule_of("blank_rule: 'congruence'"), BlankRule::kCongruence);
+}
+
+// LinkStatus asks any MAC through Mac::status(), never by its kind: a
+// configured cycle reports the nodes with a slot, auto-discovery the nodes it
+// has heard (itself included) and its blank rule, "none" nothing.
+TEST(MacFactory, EachMacReportsItsOwnStatusThroughTheInterface) {
+  core::SimulatedScheduler scheduler(day_s(0));
+  const std::string slots = "slot { src: 3 seconds: 10 } slot { src: 1 dest: 3 seconds: 5 } slot { src: 3 seconds: 5 }";
+  for (const char* name : {"fixed", "polled"}) {
+    std::unique_ptr<Mac> mac = make_mac(parse(std::string("name: '") + name + "' " + slots), 1, scheduler);
+    const MacStatus status = mac->status();
+    EXPECT_EQ(status.known_ids, (std::vector<int32_t>{1, 3})) << name;
+    EXPECT_EQ(status.blank_rule, "") << name;
+  }
+  EXPECT_TRUE(make_mac(parse("name: 'none'"), 1, scheduler)->status().known_ids.empty());
+
+  std::unique_ptr<Mac> discovery = make_mac(
+      parse("name: 'auto_discovery' slot_seconds: 15 coolness: 4 expire_cycles: 5 blank_rule: 'figure'"), 4,
+      scheduler);
+  EXPECT_EQ(discovery->status().known_ids, (std::vector<int32_t>{4}));
+  EXPECT_EQ(discovery->status().blank_rule, "figure");
+  discovery->start([](const v1::ModemTransmission&) {});
+  v1::ModemTransmission heard;
+  heard.set_src(7);
+  discovery->on_receive(heard);
+  heard.set_src(2);
+  discovery->on_receive(heard);
+  EXPECT_EQ(discovery->status().known_ids, (std::vector<int32_t>{2, 4, 7}));
+  discovery->stop();
 }
 
 TEST(MacFactory, BuildsEachKind) {

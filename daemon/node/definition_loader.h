@@ -1,5 +1,6 @@
 #pragma once
-// LoadDefinitions: DCCL definitions added while the daemon runs.
+// LoadDefinitions' work: DCCL definitions added while the daemon runs
+// (service/definitions.h is the face the API sees).
 //
 // A loaded file is recorded in the store and loaded again at start-up, after
 // the config's files: a message queued under a type loaded this way must
@@ -20,24 +21,20 @@
 #include "acomms/v1/acomms.pb.h"
 #include "dccl/codec.h"
 #include "queue/queue_manager.h"
+#include "service/definitions.h"
 #include "store/group_commit_writer.h"
 #include "store/sqlite.h"
 
-namespace acomms::service {
+namespace acomms::node {
 
-// A refused load: `code` is the gRPC status it maps to.
-struct DefinitionError : std::runtime_error {
-  enum class Code { kNotFound, kInvalid, kStore };
-  DefinitionError(Code code, const std::string& what) : std::runtime_error(what), code(code) {}
-  Code code;
-};
+using service::DefinitionError;
 
 struct RecordedDefinition {
   std::string path;
   std::vector<std::string> include_dirs;
 };
 
-class DefinitionLoader {
+class DefinitionLoader final : public service::Definitions {
  public:
   // `inline_dir` is where inline definitions are written (created when
   // first needed). All references must outlive the loader.
@@ -54,7 +51,7 @@ class DefinitionLoader {
   // Loads the request's files in order, makes queues for new types and
   // records the files. The caller must have the codec and queues to itself
   // (core thread, no Submit in progress). Throws DefinitionError.
-  std::vector<const dccl::TypeInfo*> load(const v1::LoadDefinitionsRequest& request);
+  std::vector<const dccl::TypeInfo*> load(const v1::LoadDefinitionsRequest& request) override;
 
   const std::string& inline_dir() const { return inline_dir_; }
 
@@ -72,4 +69,4 @@ class DefinitionLoader {
   std::string inline_dir_;
 };
 
-}  // namespace acomms::service
+}  // namespace acomms::node

@@ -1,10 +1,10 @@
-// DefinitionLoader (daemon/service/definition_loader.h): inline definitions
+// DefinitionLoader (daemon/node/definition_loader.h): inline definitions
 // written under the inline dir and loaded, queues made for the new types,
 // names that would leave the inline dir refused, types that cannot change,
 // missing and broken files, and the record in loaded_definitions that
 // brings them back at the next start.
 
-#include "service/definition_loader.h"
+#include "node/definition_loader.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -18,7 +18,7 @@
 #include "queue/memory_journal.h"
 #include "store/store.h"
 
-namespace acomms::service {
+namespace acomms::node {
 namespace {
 
 namespace fs = std::filesystem;
@@ -367,4 +367,4 @@ TEST_F(DefinitionLoaderTest, RecordSurvivesReopeningTheStore) {
 }
 
 }  // namespace
-}  // namespace acomms::service
+}  // namespace acomms::node

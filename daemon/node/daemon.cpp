@@ -1,4 +1,4 @@
-#include "daemon.h"
+#include "node/daemon.h"
 
 #include <spdlog/spdlog.h>
 
@@ -7,11 +7,10 @@
 
 #include "core/systemd_notify.h"
 #include "mac/mac_factory.h"
-#include "message_definitions.h"
+#include "node/codec_setup.h"
 #include "service/position_message.h"
-#include "service/received_message.h"
 
-namespace acomms {
+namespace acomms::node {
 
 Daemon::Daemon(const v1::Config& config) : config_(config) {
   // A start that fails half way (the TCP port is taken, say) must stop what
@@ -46,18 +45,22 @@ void Daemon::start() {
   }
   telemetry::configure_queues(config_.mutable_queue(), telemetry_settings_);
   store_ = std::make_unique<store::Store>(config_.data_dir());
-  std::vector<service::RecordedDefinition> api_definitions =
-      service::DefinitionLoader::read_recorded(store_->db());
+  std::vector<RecordedDefinition> api_definitions =
+      DefinitionLoader::read_recorded(store_->db());
   const telemetry::StoredStreams telemetry_stored = telemetry::TelemetryNode::read_state(store_->db());
   gram_ = make_gram(config_.gram(), config_.data_dir(), store_->db());
   // From here on only the writer's thread touches the store's connection.
   writer_ = std::make_unique<store::GroupCommitWriter>(store_->db());
   journal_ = std::make_unique<queue::SqliteJournal>(*writer_);
-  publish_when_stored_ = queue::when_stored(*journal_);
+  // Its when-stored chain counts the journal's failures from here on.
+  received_ = std::make_unique<ReceivedMessageRouter>(
+      [this](const queue::ReceivedMessage& message) { telemetry_->on_received(message); },
+      queue::when_stored(*journal_),
+      [this](const v1::ReceivedMessage& message) { subscribers_.publish(message); });
   events_ = std::make_unique<queue::EventLogReader>(store_->db().path());
   codec_ = make_codec(config_.dccl());
   // Before the queues restore: messages of these types are in the journal.
-  service::DefinitionLoader::load_recorded(*codec_, api_definitions);
+  DefinitionLoader::load_recorded(*codec_, api_definitions);
   try {
     queues_ = std::make_unique<queue::QueueManager>(*codec_, config_.queue(),
                                                     static_cast<int32_t>(config_.driver().modem_id()),
@@ -66,7 +69,7 @@ void Daemon::start() {
     throw std::runtime_error(std::string("queue config: ") + e.what());
   }
   queues_->restore();
-  definitions_ = std::make_unique<service::DefinitionLoader>(
+  definitions_ = std::make_unique<DefinitionLoader>(
       *codec_, *queues_, *writer_, (std::filesystem::path(config_.data_dir()) / "definitions").string());
   core_ = std::make_unique<core::EventLoop>();
   submitter_ = std::make_unique<queue::Submitter>(
@@ -156,28 +159,9 @@ void Daemon::build_link() {
     throw std::runtime_error(std::string("mac config: ") + e.what());
   }
   link_ = std::make_unique<link::LinkController>(
-      own_id, *queues_, *mac_, *driver_, [this](queue::ReceivedMessage message, const v1::ModemTransmission& from) {
-        spdlog::debug("received {} from {} (transmission from {})", message.type, message.src, from.src());
-        // Telemetry's messages are bits of a stream, not news for a
-        // subscriber: what they carry comes out as Position.
-        if (telemetry::is_telemetry_type(message.type)) {
-          telemetry_->on_received(message);
-          return;
-        }
-        // Published only once its event (and so its seq) is committed: a
-        // subscriber must never hold a number that a crash could hand out
-        // again, and a replay must find every message published before it
-        // (service/subscribe_rpc.cpp relies on this). Commits complete in
-        // order, so messages are published in seq order, from the store
-        // writer's thread.
-        auto received = std::make_shared<const v1::ReceivedMessage>(service::to_received_message(message, from));
-        publish_when_stored_([this, received](std::exception_ptr error) {
-          if (error) {
-            spdlog::error("received message {} (seq {}) may not be stored; passed on anyway", received->type(),
-                          received->seq());
-          }
-          subscribers_.publish(*received);
-        });
+      own_id, *queues_, *mac_, *driver_,
+      [router = received_.get()](queue::ReceivedMessage message, const v1::ModemTransmission& from) {
+        router->route(message, from);
       },
       [this] {
         link::LinkOptions options = link::LinkOptions::from_config(config_.mac(), scheduler_->clock());
@@ -188,12 +172,11 @@ void Daemon::build_link() {
             queue::durable_receipts(*journal_, [this](queue::Task task) { core_->post(std::move(task)); });
         return options;
       }());
-  // A serial modem's sentences, kept for debugging (link/raw_log.h). The
-  // simulator's and udp's binary datagrams are not worth the disk.
-  if (name == "micromodem") {
-    uint64_t bytes = config_.driver().micromodem().raw_log_bytes();
+  // The driver's bytes, kept for debugging (link/raw_log.h) when the driver
+  // says they are worth the disk (link/driver_registry.h, DriverTraits).
+  if (const auto& raw_log_bytes = drivers_.traits(name).raw_log_bytes) {
     raw_log_ = std::make_unique<link::RawLog>(std::filesystem::path(config_.data_dir()) / "link-raw.log",
-                                              bytes == 0 ? 4u << 20 : bytes, clock_);
+                                              raw_log_bytes(config_.driver()), clock_);
     link_->set_raw_tap([this](std::string_view raw, bool outgoing) { raw_log_->record(raw, outgoing); });
   }
 }
@@ -257,6 +240,7 @@ void Daemon::stop() {
   gram_api_.reset();
   if (core_) core_->stop();
   link_.reset();
+  received_.reset();
   mac_.reset();
   driver_.reset();
   // After the driver (the simulator asks the pool for models): waiting
@@ -299,4 +283,4 @@ void Daemon::stop() {
   spdlog::info("acommsd stopped");
 }
 
-}  // namespace acomms
+}  // namespace acomms::node

@@ -1,4 +1,4 @@
-#include "service/definition_loader.h"
+#include "node/definition_loader.h"
 
 #include <spdlog/spdlog.h>
 
@@ -8,7 +8,7 @@
 #include <set>
 #include <sstream>
 
-namespace acomms::service {
+namespace acomms::node {
 namespace fs = std::filesystem;
 namespace {
 
@@ -225,4 +225,4 @@ void DefinitionLoader::record(const RecordedDefinition& definition) {
   }
 }
 
-}  // namespace acomms::service
+}  // namespace acomms::node

@@ -14,7 +14,7 @@
 #include "store/group_commit_writer.h"
 #include "store/sqlite.h"
 
-namespace acomms {
+namespace acomms::node {
 
 struct GramParts {
   std::unique_ptr<gram::VehicleEnvironment> environment;
@@ -28,4 +28,4 @@ GramParts make_gram(const v1::GramConfig& config, const std::string& data_dir, s
 // Saves the state on the writer thread; `done` runs once committed or failed.
 service::SaveEnvironment save_environment_to(store::GroupCommitWriter& writer);
 
-}  // namespace acomms
+}  // namespace acomms::node

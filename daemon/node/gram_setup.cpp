@@ -1,4 +1,4 @@
-#include "gram_setup.h"
+#include "node/gram_setup.h"
 
 #include <spdlog/spdlog.h>
 
@@ -7,11 +7,11 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "gram/bellhop_engine.h"
+#include "gram/engine_registry.h"
 #include "util/bound_text.h"
 #include "util/seconds.h"
 
-namespace acomms {
+namespace acomms::node {
 namespace {
 
 constexpr unsigned kDefaultWorkers = 1;
@@ -20,6 +20,8 @@ constexpr unsigned kDefaultQueueLimit = 16;
 constexpr unsigned kMaxQueueLimit = 10000;
 constexpr double kDefaultCacheMb = 64;
 constexpr double kDefaultEngineTimeoutS = 60;
+// gram.engine when unset (api/proto/acomms/v1/config.proto).
+constexpr std::string_view kDefaultEngine = "builtin";
 
 double positive(const char* name, bool has, double value, double fallback, bool zero_ok = false) {
   if (!has) return fallback;
@@ -29,22 +31,30 @@ double positive(const char* name, bool has, double value, double fallback, bool 
   return value;
 }
 
+// The engine gram.engine names, from the engines linked in: an engine
+// added registers itself (gram/engine_registry.h), nothing here lists them.
 std::unique_ptr<gram::ModelEngine> make_engine(const v1::GramConfig& c, const std::string& data_dir) {
-  if (c.engine().empty() || c.engine() == "builtin") {
-    if (!c.bellhop_path().empty())
-      spdlog::warn("gram.bellhop_path is set but gram.engine is \"builtin\": BELLHOP is not used");
-    return gram::make_builtin_engine();
+  const gram::EngineRegistry& engines = gram::EngineRegistry::linked();
+  const std::string name = c.engine().empty() ? std::string(kDefaultEngine) : c.engine();
+  if (!engines.contains(name)) {
+    std::string known;
+    for (const std::string& n : engines.names()) known += (known.empty() ? "" : ", ") + n;
+    throw std::runtime_error("gram.engine \"" + name + "\" is not an engine (known: " + known + ")");
   }
-  if (c.engine() != "bellhop")
-    throw std::runtime_error("gram.engine \"" + c.engine() + "\" is not an engine (known: builtin, bellhop)");
-  if (c.bellhop_path().empty()) throw std::runtime_error("gram.engine is \"bellhop\" but gram.bellhop_path is empty");
-  gram::BellhopOptions options;
-  options.executable = c.bellhop_path();
+  gram::EngineSettings settings;
+  if (!engines.traits(name).external) {
+    if (!c.bellhop_path().empty())
+      spdlog::warn("gram.bellhop_path is set but gram.engine is \"{}\": BELLHOP is not used", name);
+    return engines.create(name, settings);
+  }
+  if (c.bellhop_path().empty())
+    throw std::runtime_error("gram.engine is \"" + name + "\" but gram.bellhop_path is empty");
+  settings.executable = c.bellhop_path();
   // Under the store: the service unit's file system is read-only elsewhere.
-  options.work_root = (std::filesystem::path(data_dir) / "gram-runs").string();
-  options.timeout = std::chrono::duration<double>(
+  settings.work_root = (std::filesystem::path(data_dir) / "gram-runs").string();
+  settings.timeout = std::chrono::duration<double>(
       positive("engine_timeout_s", c.has_engine_timeout_s(), c.engine_timeout_s(), kDefaultEngineTimeoutS));
-  return gram::make_bellhop_engine(options);
+  return engines.create(name, settings);
 }
 
 }  // namespace
@@ -107,4 +117,4 @@ service::SaveEnvironment save_environment_to(store::GroupCommitWriter& writer) {
   };
 }
 
-}  // namespace acomms
+}  // namespace acomms::node

@@ -17,6 +17,9 @@
 #include "link/link_controller.h"
 #include "link/raw_log.h"
 #include "mac/mac.h"
+#include "node/definition_loader.h"
+#include "node/gram_setup.h"
+#include "node/received_message_router.h"
 #include "dccl/codec.h"
 #include "queue/durable_receipts.h"
 #include "queue/queue_manager.h"
@@ -25,18 +28,16 @@
 #include "queue/sqlite_journal.h"
 #include "queue/submitter.h"
 #include "store/group_commit_writer.h"
-#include "gram_setup.h"
 #include "service/gram_service.h"
 #include "service/grpc_server.h"
 #include "service/acomms_service.h"
-#include "service/definition_loader.h"
 #include "service/subscriber_hub.h"
 #include "store/store.h"
 #include "core/node_position.h"
 #include "telemetry/telemetry_node.h"
 #include "telemetry/track_reader.h"
 
-namespace acomms {
+namespace acomms::node {
 
 class Daemon {
  public:
@@ -65,14 +66,11 @@ class Daemon {
   std::unique_ptr<store::Store> store_;
   std::unique_ptr<store::GroupCommitWriter> writer_;
   std::unique_ptr<queue::SqliteJournal> journal_;
-  // Received messages are published through this (queue/durable_receipts.h):
-  // their own chain, apart from the ACKs'.
-  queue::WhenStored publish_when_stored_;
   std::unique_ptr<queue::EventLogReader> events_;
   std::unique_ptr<dccl::Codec> codec_;
   // Owned by the core thread once it runs.
   std::unique_ptr<queue::QueueManager> queues_;
-  std::unique_ptr<service::DefinitionLoader> definitions_;
+  std::unique_ptr<DefinitionLoader> definitions_;
   service::SubscriberHub subscribers_;
   std::unique_ptr<core::EventLoop> core_;
   // Submit's way into the queues, through the core thread.
@@ -85,6 +83,9 @@ class Daemon {
   std::unique_ptr<link::RawLog> raw_log_;  // outlives link_, which writes to it
   std::unique_ptr<link::DriverSupervisor> driver_;
   std::unique_ptr<mac::Mac> mac_;
+  // Where the link's received messages go; publishes through its own
+  // when-stored chain (queue/durable_receipts.h), apart from the ACKs'.
+  std::unique_ptr<ReceivedMessageRouter> received_;
   std::unique_ptr<link::LinkController> link_;
   // Prunes the event log on the core thread's schedule, on the writer.
   std::unique_ptr<queue::EventLogRetention> retention_;
@@ -101,4 +102,4 @@ class Daemon {
   std::unique_ptr<service::GrpcServer> server_;
 };
 
-}  // namespace acomms
+}  // namespace acomms::node

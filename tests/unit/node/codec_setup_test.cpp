@@ -1,7 +1,7 @@
 // The daemon's codec from config: definitions load, encryption and its
 // exempt ids follow the config, and problems are start-up errors.
 
-#include "message_definitions.h"
+#include "node/codec_setup.h"
 
 #include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
@@ -17,7 +17,7 @@
 #include "core/config_loader.h"
 #include "dccl/hex.h"
 
-namespace acomms {
+namespace acomms::node {
 namespace {
 
 namespace fs = std::filesystem;
@@ -34,7 +34,7 @@ v1::DcclConfig dccl_config(const std::string& text) {
   return core::parse_config("dccl { " + text + " }", "test.conf").dccl();
 }
 
-TEST(MessageDefinitions, LoadsTheConfiguredFiles) {
+TEST(CodecSetup, LoadsTheConfiguredFiles) {
   auto codec = make_codec(dccl_config("proto_files: \"" + kGvProto + "\""));
   EXPECT_NE(codec->find_type("gv.NavigationReport"), nullptr);
   EXPECT_EQ(encode_nav(*codec), "f834987170463213");
@@ -42,7 +42,7 @@ TEST(MessageDefinitions, LoadsTheConfiguredFiles) {
 
 // probe.proto holds a type the reference DCCL refuses (dccl.static on an
 // enum): the daemon still starts, with the file's other types, and says so.
-TEST(MessageDefinitions, ARefusedTypeIsReportedAtStartAndTheRestOfItsFileLoads) {
+TEST(CodecSetup, ARefusedTypeIsReportedAtStartAndTheRestOfItsFileLoads) {
   std::ostringstream log;
   auto previous = spdlog::default_logger();
   spdlog::set_default_logger(
@@ -59,18 +59,18 @@ TEST(MessageDefinitions, ARefusedTypeIsReportedAtStartAndTheRestOfItsFileLoads) 
       << log.str();
 }
 
-TEST(MessageDefinitions, PassphraseEncryptsAsTheSpecVector) {
+TEST(CodecSetup, PassphraseEncryptsAsTheSpecVector) {
   auto codec = make_codec(dccl_config("proto_files: \"" + kGvProto + "\" passphrase: \"my_passphrase!\""));
   EXPECT_EQ(encode_nav(*codec), "f8a02b71dfcb815f");
 }
 
-TEST(MessageDefinitions, ExemptIdsStayInClear) {
+TEST(CodecSetup, ExemptIdsStayInClear) {
   auto codec = make_codec(dccl_config("proto_files: \"" + kGvProto +
                                       "\" passphrase: \"my_passphrase!\" crypto_exempt_ids: 124"));
   EXPECT_EQ(encode_nav(*codec), "f834987170463213");
 }
 
-TEST(MessageDefinitions, PassphraseFileLosesItsTrailingNewline) {
+TEST(CodecSetup, PassphraseFileLosesItsTrailingNewline) {
   fs::path file = fs::temp_directory_path() / ("acomms-pass-" + std::to_string(::getpid()));
   std::ofstream(file) << "my_passphrase!\n";
   auto codec = make_codec(
@@ -85,14 +85,14 @@ TEST(MessageDefinitions, PassphraseFileLosesItsTrailingNewline) {
   }
 }
 
-TEST(MessageDefinitions, StrictComesFromConfig) {
+TEST(CodecSetup, StrictComesFromConfig) {
   auto codec = make_codec(dccl_config("proto_files: \"" + kGvProto + "\" strict: true"));
   auto message = codec->new_message("gv.Num4");
   google::protobuf::TextFormat::ParseFromString("ri: 101 ru: 0", message.get());
   EXPECT_THROW(codec->encode(*message), dccl::Error);
 }
 
-TEST(MessageDefinitions, BrokenDefinitionsNameTheFileAndField) {
+TEST(CodecSetup, BrokenDefinitionsNameTheFileAndField) {
   fs::path file = fs::temp_directory_path() / ("acomms-bad-" + std::to_string(::getpid()) + ".proto");
   std::ofstream(file) << "syntax = \"proto2\";\nimport \"dccl/option_extensions.proto\";\n"
                          "message Bad {\n  option (dccl.msg) = { codec_version: 4 id: 3 max_bytes: 8 };\n"
@@ -111,7 +111,7 @@ TEST(MessageDefinitions, BrokenDefinitionsNameTheFileAndField) {
 // Position telemetry's ids (110, 111) are reserved: the daemon loads its
 // types first, so a file whose type claims one is refused at load (a
 // start-up error, as any clash of ids), naming both types.
-TEST(MessageDefinitions, AUserTypeClaimingATelemetryIdIsRefusedNamingBoth) {
+TEST(CodecSetup, AUserTypeClaimingATelemetryIdIsRefusedNamingBoth) {
   fs::path file = fs::temp_directory_path() / ("acomms-clash-" + std::to_string(::getpid()) + ".proto");
   std::ofstream(file) << "syntax = \"proto2\";\nimport \"dccl/option_extensions.proto\";\npackage mine;\n"
                          "message Clash {\n  option (dccl.msg) = { codec_version: 4 id: 110 max_bytes: 8 };\n"
@@ -131,7 +131,7 @@ TEST(MessageDefinitions, AUserTypeClaimingATelemetryIdIsRefusedNamingBoth) {
 
 // The arithmetic codec's model comes from config; the spec vector: values
 // [0,0,0,1] with this model encode to 020b.
-TEST(MessageDefinitions, ArithmeticModelsComeFromConfig) {
+TEST(CodecSetup, ArithmeticModelsComeFromConfig) {
   fs::path file = fs::temp_directory_path() / ("acomms-arith-" + std::to_string(::getpid()) + ".proto");
   std::ofstream(file) << "syntax = \"proto2\";\nimport \"dccl/option_extensions.proto\";\n"
                          "import \"dccl/arithmetic/protobuf/arithmetic_extensions.proto\";\n"
@@ -154,7 +154,7 @@ TEST(MessageDefinitions, ArithmeticModelsComeFromConfig) {
   }
 }
 
-TEST(MessageDefinitions, ConfigRulesAreLocated) {
+TEST(CodecSetup, ConfigRulesAreLocated) {
   try {
     core::parse_config("dccl {\n  passphrase: \"a\"\n  passphrase_file: \"/b\"\n}\n", "c.conf");
     FAIL() << "no error";
@@ -173,4 +173,4 @@ TEST(MessageDefinitions, ConfigRulesAreLocated) {
 }
 
 }  // namespace
-}  // namespace acomms
+}  // namespace acomms::node

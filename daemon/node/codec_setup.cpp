@@ -1,4 +1,4 @@
-#include "message_definitions.h"
+#include "node/codec_setup.h"
 
 #include <spdlog/spdlog.h>
 
@@ -10,7 +10,7 @@
 
 #include "dccl/plugin_codecs.h"
 
-namespace acomms {
+namespace acomms::node {
 namespace {
 
 std::string read_passphrase_file(const std::string& path) {
@@ -72,4 +72,4 @@ std::unique_ptr<dccl::Codec> make_codec(const v1::DcclConfig& config) {
   return codec;
 }
 
-}  // namespace acomms
+}  // namespace acomms::node
