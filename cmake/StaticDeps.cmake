@@ -80,12 +80,8 @@ acomms_static_target(acomms::sqlite3 LIBS sqlite3 m dl)
 # WGS84 <-> local metres for position telemetry's datum (daemon/telemetry).
 acomms_static_target(acomms::geographiclib LIBS GeographicLib)
 
-# Header-only libraries. spdlog's Debian build expects an external fmt; both
-# are used in header-only mode so that nothing needs their shared objects.
-add_library(acomms::spdlog INTERFACE IMPORTED GLOBAL)
-target_compile_definitions(acomms::spdlog INTERFACE FMT_HEADER_ONLY SPDLOG_FMT_EXTERNAL)
-add_library(acomms::asio INTERFACE IMPORTED GLOBAL)
-target_compile_definitions(acomms::asio INTERFACE ASIO_STANDALONE ASIO_NO_DEPRECATED)
+# Header-only libraries. spdlog and Asio are compiled once each, by
+# cmake/CompiledOnce.cmake (included once the tree's compile options are set).
 add_library(acomms::cli11 INTERFACE IMPORTED GLOBAL)
 # Eigen (the telemetry Kalman filter) lives under include/eigen3/, not on the
 # default include path.

@@ -147,7 +147,8 @@ void FakeMicroModem::handle_lbl(const Sentence& s) {
   TravelTimes times;
   {
     Duration since = modem_time_since_epoch();
-    auto tenths = std::chrono::duration_cast<std::chrono::milliseconds>(since).count() / 10 % 8'640'000;
+    // long long, not the rep's own type: %lld must match on every ABI.
+    long long tenths = std::chrono::duration_cast<std::chrono::milliseconds>(since).count() / 10 % 8'640'000;
     char text[16];
     std::snprintf(text, sizeof text, "%02lld%02lld%02lld.%02lld", tenths / 360000, tenths / 6000 % 60,
                   tenths / 100 % 60, tenths % 100);
