@@ -26,6 +26,8 @@ class FixedSpeedObserver final : public Observer {
   void reset(const GridPosition& position) override;
   Prediction predict() override;
   void update(const GridPosition& position) override;
+  std::string save() const override;
+  bool load(std::string_view bytes) override;
 
  private:
   double step_;  // s * tau, in precision steps

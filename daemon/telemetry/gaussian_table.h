@@ -35,7 +35,7 @@ std::vector<uint32_t> gaussian_frequencies(int32_t d_min, int32_t d_max, int64_t
 // Tables already built, by (mean16, sigma16): the Kalman filter's variance
 // settles within a few samples, so a handful of tables serve a whole track.
 // References stay valid until trim() (node-based map), which models call at
-// a full transmission: between two fulls at most 3 (N + 1) tables are added.
+// each full transmission: between two fulls at most 3 (N + 1) tables are added.
 class GaussianTableCache {
  public:
   GaussianTableCache(int32_t d_min, int32_t d_max) : d_min_(d_min), d_max_(d_max) {}

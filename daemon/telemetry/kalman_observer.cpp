@@ -1,6 +1,10 @@
 #include "telemetry/kalman_observer.h"
 
+#include <bit>
+#include <cmath>
+
 #include "telemetry/deterministic_math.h"
+#include "telemetry/state_bytes.h"
 
 namespace acomms::telemetry {
 
@@ -48,6 +52,35 @@ void KalmanObserver::update(const GridPosition& position) {
     innovation(axis) = static_cast<double>(position[axis]) - x_prior_(0, axis);
   x_ = x_prior_ + gain * innovation;
   p_ = p_prior_ - gain * p_prior_.row(0);
+}
+
+}  // namespace acomms::telemetry
+
+namespace acomms::telemetry {
+
+std::string KalmanObserver::save() const {
+  StateWriter out;
+  for (const Eigen::Matrix3d* m : {&x_, &p_})
+    for (int i = 0; i < 9; ++i) out.put(std::bit_cast<uint64_t>(m->data()[i]), 8);
+  return out.take();
+}
+
+bool KalmanObserver::load(std::string_view bytes) {
+  StateReader in(bytes);
+  Eigen::Matrix3d x, p;
+  for (Eigen::Matrix3d* m : {&x, &p}) {
+    for (int i = 0; i < 9; ++i) {
+      uint64_t raw = 0;
+      if (!in.get(8, &raw)) return false;
+      m->data()[i] = std::bit_cast<double>(raw);
+      if (!std::isfinite(m->data()[i])) return false;
+    }
+  }
+  if (!in.done()) return false;
+  x_ = x;
+  p_ = p;
+  has_prior_ = false;
+  return true;
 }
 
 }  // namespace acomms::telemetry

@@ -13,7 +13,8 @@
 // full's, velocity = acceleration = 0, P = diag(R, (2 m/s)^2, (0.1 m/s^2)^2):
 // the position as good as one measurement, any speed an AUV or glider makes,
 // little acceleration. P never depends on the data, only on the number of
-// samples since the full, so both ends' tables follow it exactly.
+// samples since the re-anchoring full, so both ends' tables follow it
+// exactly. A full that a delta could have carried is an ordinary update.
 
 #include <Eigen/Core>
 
@@ -28,6 +29,9 @@ class KalmanObserver final : public Observer {
   void reset(const GridPosition& position) override;
   Prediction predict() override;
   void update(const GridPosition& position) override;
+  // x and P (9 + 9 doubles, by their bits).
+  std::string save() const override;
+  bool load(std::string_view bytes) override;
 
   // For tests: the posterior covariance after the last update (or reset).
   const Eigen::Matrix3d& covariance() const { return p_; }

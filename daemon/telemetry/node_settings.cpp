@@ -78,7 +78,7 @@ NodeSettings node_settings(const v1::TelemetryConfig& c, int32_t own_id) {
 }
 
 void configure_queues(v1::QueueConfig* queues, const NodeSettings& settings) {
-  for (std::string_view type : {kFullType, kDeltaType}) {
+  for (std::string_view type : {kFullType, kDeltaType, kFeedbackType}) {
     v1::QueueTypeConfig* entry = nullptr;
     for (v1::QueueTypeConfig& existing : *queues->mutable_type()) {
       if (existing.type() == type) entry = &existing;

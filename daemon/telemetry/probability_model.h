@@ -8,22 +8,28 @@
 // needed: each delta is its own codeword (the coder's exact end delimits it)
 // and an out-of-range innovation makes the sender send a full transmission
 // instead. Models adapt only to what was sent, after each encode and each
-// decode alike, and forget it at every full transmission (reset), so a
-// receiver that missed earlier messages is in step again from any full.
+// decode alike. What they learned carries across full transmissions (a full
+// re-anchors the position, it is no reason to forget the statistics): they
+// forget it only at a fresh start (reset), which a full announces when
+// either end lost its state (stream_predictor.h). So that counts never
+// overflow the coder's 30-bit totals on a track of days, each axis's
+// statistics are halved (integer division, the same on both ends) once
+// kForgetAfter innovations are in them: old behaviour slowly gives way.
 //
 // Models (make_model):
 //   uniform   every innovation alike (eq. 3.24): log2(101) ~ 6.66 bits/axis
 //   gaussian  zero mean, the observer's variance: (s tau)^2 for fixed speed
 //             (eq. 3.26-3.27), the diagonal of P- for the Kalman filter
 //   adaptive  (N_d + 1) / (m + bins) over the m innovations sent since the
-//             full (eq. 3.28-3.29): starts uniform
+//             fresh start (eq. 3.28-3.29): starts uniform
 //   learned   ours: a Gaussian whose mean and variance are learned from the
-//             innovations sent since the full (starting from the observer's
+//             innovations sent since the fresh start (starting from the observer's
 //             variance), plus the adaptive counts; see learned_model in
 //             probability_models.cpp
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "dccl/arithmetic_coder.h"
 #include "telemetry/telemetry_config.h"
@@ -35,8 +41,20 @@ class ProbabilityModel {
   ProbabilityModel(int32_t d_min, int32_t d_max) : d_min_(d_min), d_max_(d_max) {}
   virtual ~ProbabilityModel() = default;
 
-  // Forgets everything learned (at a full transmission).
+  // Innovations per axis after which the statistics are halved.
+  static constexpr int64_t kForgetAfter = 1 << 14;
+
+  // Forgets everything learned (at a fresh start).
   virtual void reset() = 0;
+  // What the model learned, as integers (empty for a model that learns
+  // nothing), and back: the stream's durable state keeps them
+  // (stream_history.h). restore_statistics is false, and changes nothing,
+  // for values this model could not have produced.
+  virtual std::vector<int64_t> statistics() const { return {}; }
+  virtual bool restore_statistics(const std::vector<int64_t>& statistics) { return statistics.empty(); }
+  // Lets go of cached tables (at each full, when no table is in use): the
+  // cache must not grow with the track. Changes no table's content.
+  virtual void trim() {}
   // The table for axis's next innovation; variance is the observer's, in
   // precision steps squared. Valid until the next table() or observe() for
   // that axis.

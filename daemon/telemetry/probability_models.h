@@ -24,7 +24,8 @@ class UniformModel final : public ProbabilityModel {
 class GaussianModel final : public ProbabilityModel {
  public:
   GaussianModel(int32_t d_min, int32_t d_max) : ProbabilityModel(d_min, d_max), cache_(d_min, d_max) {}
-  void reset() override { cache_.trim(); }
+  void reset() override {}
+  void trim() override { cache_.trim(); }
   const dccl::arith::FrequencyTable& table(int axis, double variance) override;
   void observe(int, int32_t) override {}
 
@@ -38,18 +39,24 @@ class AdaptiveModel final : public ProbabilityModel {
   void reset() override;
   const dccl::arith::FrequencyTable& table(int axis, double) override { return tables_[axis]; }
   void observe(int axis, int32_t innovation) override;
+  // Per axis, per symbol: N_d.
+  std::vector<int64_t> statistics() const override;
+  bool restore_statistics(const std::vector<int64_t>& statistics) override;
 
  private:
+  void set_counts(int axis, const std::vector<int64_t>& counts, size_t from);
+
   std::array<dccl::arith::FrequencyTable, kAxes> tables_;
+  std::array<int64_t, kAxes> observed_{};  // sum of N_d per axis
 };
 
-// Ours. The adaptive model pays for its uniform start: with a reset at every
-// full (every 61 samples by default) it never gets far from it. The
+// Ours. The adaptive model pays for its uniform start (on a short track, or
+// after a fresh start). The
 // innovations of a vehicle that mostly holds course are narrow and biased
 // (a speed not quite the configured one, a Kalman filter that lags), which a
 // Gaussian with a learned mean and variance captures after two or three
 // samples, while the counts still catch what is not Gaussian (the yo-yo's
-// turns). Per axis, over the m innovations d_i sent since the full:
+// turns). Per axis, over the m innovations d_i sent since the fresh start:
 //   mean  = sum d_i / (m + kMeanPrior)                   (shrunk towards 0)
 //   var   = (kVariancePrior v0 + sum (d_i - mean)^2) / (kVariancePrior + m)
 //   f(d)  = G(mean, var)(d) + kCountWeight N_d
@@ -66,8 +73,12 @@ class LearnedModel final : public ProbabilityModel {
 
   LearnedModel(int32_t d_min, int32_t d_max);
   void reset() override;
+  void trim() override { cache_.trim(); }
   const dccl::arith::FrequencyTable& table(int axis, double variance) override;
   void observe(int axis, int32_t innovation) override;
+  // Per axis: count, sum, sum of squares, then the histogram.
+  std::vector<int64_t> statistics() const override;
+  bool restore_statistics(const std::vector<int64_t>& statistics) override;
 
  private:
   struct Axis {

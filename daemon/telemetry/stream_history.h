@@ -1,14 +1,15 @@
 #pragma once
 // What one end of a telemetry stream must remember to stay in step across a
-// restart: the samples since the last full transmission, not the observer's
-// floating-point state.
+// restart: the predictor's state right after the last full transmission
+// (StreamPredictor::save: the observer's and the model's statistics, which
+// outlive fulls) and the samples since that full.
 //
-// Observers and models restart at every full, so their state is a function
-// of the full's position and the samples after it. Replaying those (at most
-// full_every + 1 integer positions) rebuilds it exactly, on any build, which
-// storing the Kalman filter's doubles would not promise across versions.
-// The bytes carry the config's fingerprint: state saved under another config
-// is refused, and the end starts over (the sender with a full).
+// Replaying the samples (at most full_every of them) on top of the state at
+// the full rebuilds the predictor exactly, and gives the state before the
+// last delta too (a resent delta is read with it). The bytes carry the
+// config's fingerprint: state saved under another config, or by an earlier
+// layout, is refused, and the end starts over (the sender with a fresh full,
+// the receiver waiting for one).
 
 #include <cstdint>
 #include <optional>
@@ -25,6 +26,7 @@ struct StreamHistory {
   uint32_t sequence = 0;  // of the last message
   int64_t time_s = 0;     // of the last sample
   std::vector<GridPosition> since_full;  // [0]: the full's position
+  std::string at_full;  // StreamPredictor::save() after the full (when in_step)
 };
 
 std::string serialize(const StreamHistory& history, uint64_t config_fingerprint);

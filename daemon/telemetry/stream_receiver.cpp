@@ -11,7 +11,7 @@
 namespace acomms::telemetry {
 namespace {
 
-constexpr uint64_t kStateVersion = 1;
+constexpr uint64_t kStateVersion = 2;  // 2: asked
 
 void put_message(StateWriter& out, const WireMessage& m, double arrived) {
   out.put(static_cast<uint64_t>(m.kind), 1);
@@ -35,8 +35,10 @@ std::vector<ReceivedPosition> StreamReceiver::receive(const WireMessage& message
     if (message.kind == MessageKind::kFull) {
       consume(message, now, &out);
       release(now, &out);
-    } else if (held_.size() < kMaxHeld) {
-      held_.emplace(message.sequence, Held{message, now});
+    } else {
+      // A receiver without state: the sender's next full must be fresh.
+      ask_for_fresh();
+      if (held_.size() < kMaxHeld) held_.emplace(message.sequence, Held{message, now});
     }
     return out;
   }
@@ -200,10 +202,16 @@ std::optional<uint32_t> StreamReceiver::nearest_full(double arrived_by) const {
 }
 
 void StreamReceiver::consume(const WireMessage& message, double now, std::vector<ReceivedPosition>* out) {
+  if (started_ && sequence_distance(message.sequence, last_) != 1) {
+    // Past a gap: the sender's statistics include what never came.
+    decoder_.restore({});
+    in_step_ = false;
+  }
   started_ = true;
   last_ = message.sequence;
   if (message.kind == MessageKind::kDelta && !in_step_) {
     ++counters_.out_of_step;
+    ask_for_fresh();
     return;
   }
   DecodedMessage decoded;
@@ -236,7 +244,13 @@ void StreamReceiver::consume(const WireMessage& message, double now, std::vector
     return;
   }
   if (message.kind == MessageKind::kFull) {
-    in_step_ = true;
+    in_step_ = decoded.in_step;
+    asked_ = false;
+    if (!in_step_) {
+      spdlog::info("telemetry from {}: full {} carries statistics this node does not hold: asking for a fresh one",
+                   src_, message.sequence);
+      ask_for_fresh();
+    }
     day_offset_s_ = unwrap_time_of_day(decoded.time_s, static_cast<int64_t>(now)) - decoded.time_s;
   }
   ReceivedPosition position;
@@ -249,9 +263,24 @@ void StreamReceiver::consume(const WireMessage& message, double now, std::vector
   out->push_back(position);
 }
 
+void StreamReceiver::ask_for_fresh() {
+  if (asked_) return;
+  asked_ = true;
+  feedback_due_ = true;
+}
+
+std::optional<Feedback> StreamReceiver::take_feedback() {
+  if (!feedback_due_) return std::nullopt;
+  feedback_due_ = false;
+  Feedback feedback;
+  if (started_) feedback.heard = last_;
+  return feedback;
+}
+
 void StreamReceiver::undecodable(const WireMessage& message, const char* why) {
   ++counters_.undecodable;
   in_step_ = false;
+  ask_for_fresh();
   decoder_.restore({});
   spdlog::warn("telemetry from {}: message {} does not decode ({}): waiting for the next full", src_,
                message.sequence, why);
@@ -262,6 +291,7 @@ std::string StreamReceiver::state() const {
   out.put(kStateVersion, 1);
   out.put(started_ ? 1 : 0, 1);
   out.put(in_step_ ? 1 : 0, 1);
+  out.put(asked_ ? 1 : 0, 1);
   out.put(last_, 2);
   out.put(static_cast<uint64_t>(day_offset_s_), 8);
   out.put(static_cast<uint64_t>(last_time_s_), 8);
@@ -273,10 +303,10 @@ std::string StreamReceiver::state() const {
 
 bool StreamReceiver::restore(std::string_view state) {
   StateReader in(state);
-  uint64_t version = 0, started = 0, in_step = 0, last = 0, offset = 0, last_time = 0, count = 0;
+  uint64_t version = 0, started = 0, in_step = 0, asked = 0, last = 0, offset = 0, last_time = 0, count = 0;
   std::string decoder_state;
   bool ok = in.get(1, &version) && version == kStateVersion && in.get(1, &started) && started <= 1 &&
-            in.get(1, &in_step) && in_step <= 1 && in.get(2, &last) && last < kWireSequenceModulus &&
+            in.get(1, &in_step) && in_step <= 1 && in.get(1, &asked) && asked <= 1 && in.get(2, &last) && last < kWireSequenceModulus &&
             in.get(8, &offset) && in.get(8, &last_time) && in.get_bytes(&decoder_state) && in.get(4, &count) &&
             count <= kMaxHeld;
   std::map<uint32_t, Held> held;
@@ -299,7 +329,7 @@ bool StreamReceiver::restore(std::string_view state) {
   const bool decoder_ok = ok && decoder_.restore(decoder_state);
   if (!ok) {
     decoder_.restore({});
-    started_ = in_step_ = false;
+    started_ = in_step_ = asked_ = false;
     last_ = 0;
     day_offset_s_ = last_time_s_ = 0;
     held_.clear();
@@ -307,6 +337,7 @@ bool StreamReceiver::restore(std::string_view state) {
   }
   started_ = started == 1;
   in_step_ = in_step == 1 && decoder_ok;
+  asked_ = asked == 1;
   last_ = static_cast<uint32_t>(last);
   day_offset_s_ = static_cast<int64_t>(offset);
   last_time_s_ = static_cast<int64_t>(last_time);

@@ -25,10 +25,19 @@
 // Between the two bounds (at least d tau and less than 2048 tau later) a
 // full may follow d - 1 messages still being resent, and waits for them as
 // any held full does.
-// A delta is applied only when the decoder is in step (a full since the
-// start, and every message since consumed); otherwise it is dropped and
-// the stream waits for the next full: a position is never decoded against
-// the wrong state. Body bits that do not decode count as a lost delta.
+// A delta is applied only when the decoder is in step (a fresh full since
+// the start, or a full whose statistics it holds, and every message since
+// consumed); otherwise it is dropped and the stream waits for the next
+// full: a position is never decoded against the wrong state. Body bits that
+// do not decode count as a lost delta. Consuming past a gap (the messages
+// in it never come) forgets the decoder's state: the sender's statistics
+// include what was lost.
+//
+// Statistics outlive fulls (stream_predictor.h), so a receiver that lost
+// them is in step again only from a fresh full, which the sender sends when
+// asked: take_feedback() says when to ask (the receiver lost its state, saw
+// a gap, or a full whose statistics it does not hold), at most once per
+// full received, and the sender's next message is then a fresh full.
 //
 // Not thread-safe: the core thread in acommsd.
 
@@ -61,6 +70,14 @@ struct ReceiverCounters {
   uint64_t fresh_starts = 0;  // fulls that restarted the stream: the sender counts anew
 };
 
+// What a receiver tells its sender when it lost the statistics.
+struct Feedback {
+  // The sequence of the last message consumed; none when nothing was (a
+  // receiver without state). The sender ignores a request that a fresh
+  // full it sent since will answer.
+  std::optional<uint32_t> heard;
+};
+
 class StreamReceiver {
  public:
   static constexpr size_t kMaxHeld = 1024;
@@ -77,6 +94,10 @@ class StreamReceiver {
   // False for unusable bytes: the stream waits for the next full.
   bool restore(std::string_view state);
 
+  // A request for a fresh full, when one is due (then not again until the
+  // next full is consumed).
+  std::optional<Feedback> take_feedback();
+
   const ReceiverCounters& counters() const { return counters_; }
   size_t held() const { return held_.size(); }
 
@@ -89,6 +110,9 @@ class StreamReceiver {
   void release(double now, std::vector<ReceivedPosition>* out);
   // Forgets the held messages at or before the last consumed.
   void drop_behind();
+  // Out of step: ask the sender for a fresh full, unless asked since the
+  // last full.
+  void ask_for_fresh();
   // A body that did not decode: out of step until the next full.
   void undecodable(const WireMessage& message, const char* why);
   // Whether `full`, d messages on from the last consumed, can be the
@@ -115,6 +139,8 @@ class StreamReceiver {
   uint32_t last_ = 0;      // sequence of the last consumed message
   int64_t day_offset_s_ = 0;  // absolute time - the decoder's time of day
   int64_t last_time_s_ = 0;   // of the last position
+  bool asked_ = false;        // for a fresh full, since the last full consumed
+  bool feedback_due_ = false;
   // Messages after a gap, by sequence (at most kMaxHeld: past it the
   // newest is refused, and the sender's resend brings it again).
   std::map<uint32_t, Held> held_;

@@ -32,17 +32,44 @@ DecodedMessage TelemetryDecoder::decode(dccl::BitReader& in) {
   if (history_.in_step && header.sequence == history_.sequence && history_.since_full.size() == 1 &&
       history_.since_full[0] == body.position && history_.time_s == body.time_of_day_s) {
     message.outcome = DecodeOutcome::kDuplicate;
+    message.in_step = true;
     return message;
   }
-  predictor_.reset(body.position);
-  history_.in_step = true;
+  history_.in_step = apply_full(body);
   history_.sequence = header.sequence;
   history_.time_s = body.time_of_day_s;
   history_.since_full.assign(1, body.position);
+  history_.at_full = history_.in_step ? predictor_.save() : std::string();
+  if (!history_.in_step) history_.since_full.clear();
+  message.in_step = history_.in_step;
   message.outcome = DecodeOutcome::kPosition;
   for (int axis = 0; axis < kAxes; ++axis)
     message.position_m[axis] = static_cast<double>(message.grid[axis]) * config_.precision_m;
   return message;
+}
+
+bool TelemetryDecoder::apply_full(const FullBody& body) {
+  if (body.fresh) {
+    predictor_.start_fresh(body.position);
+    return true;
+  }
+  const uint32_t mask = (1u << kStatisticsCheckBits) - 1;
+  if (!history_.in_step || (predictor_.check() & mask) != body.check) return false;
+  if (!body.continues) {
+    predictor_.re_anchor(body.position);
+    return true;
+  }
+  const Prior prior = predictor_.prior();
+  Innovation innovation;
+  for (int axis = 0; axis < kAxes; ++axis) {
+    const int64_t d = body.position[axis] - prior.position[axis];
+    // The sender found it in bounds against the same prediction: not this
+    // sender's state after all.
+    if (d < config_.innovation_min || d >= config_.innovation_max) return false;
+    innovation[axis] = static_cast<int32_t>(d);
+  }
+  predictor_.accept(body.position, innovation);
+  return true;
 }
 
 DecodedMessage TelemetryDecoder::decode_delta(dccl::BitReader& in, DecodedMessage message) {
@@ -82,6 +109,7 @@ DecodedMessage TelemetryDecoder::decode_delta(dccl::BitReader& in, DecodedMessag
   history_.since_full.push_back(message.grid);
   message.time_s = history_.time_s;
   message.outcome = DecodeOutcome::kPosition;
+  message.in_step = true;
   for (int axis = 0; axis < kAxes; ++axis)
     message.position_m[axis] = static_cast<double>(message.grid[axis]) * config_.precision_m;
   return message;

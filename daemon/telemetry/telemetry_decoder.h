@@ -2,7 +2,11 @@
 // The receiving end of a telemetry stream: one message in, at most one
 // position out, with the same StreamPredictor as the sender.
 //
-// A full transmission always puts the decoder in step. A delta is decoded
+// A fresh full always puts the decoder in step. A full that carries the
+// statistics on does only when the decoder holds them (in step, and its
+// check equals the full's): otherwise its position is still good, but no
+// delta can be decoded until a fresh full (DecodedMessage::in_step, so the
+// receiver can ask for one). A delta is decoded
 // only when it is the next message (sequence = last + 1 mod 16); the same
 // sequence again is a resent duplicate (ignored); anything else means a
 // message was missed, and deltas are refused until the next full (the
@@ -33,6 +37,9 @@ struct DecodedMessage {
   int64_t time_s = 0;
   GridPosition grid{};
   std::array<double, kAxes> position_m{};
+  // After a kPosition: whether the next delta can be decoded (false after a
+  // full whose statistics this decoder does not hold).
+  bool in_step = false;
 };
 
 class TelemetryDecoder {
@@ -54,6 +61,9 @@ class TelemetryDecoder {
 
  private:
   DecodedMessage decode_delta(dccl::BitReader& in, DecodedMessage message);
+  // Applies a full's position to the predictor; false when this decoder
+  // does not hold the statistics the full carries on.
+  bool apply_full(const FullBody& body);
 
   TelemetryConfig config_;
   uint64_t fingerprint_;

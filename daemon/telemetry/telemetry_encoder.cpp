@@ -28,11 +28,6 @@ GridPosition TelemetryEncoder::quantise(const Sample& sample) const {
   return position;
 }
 
-bool TelemetryEncoder::delta_possible(const Sample& sample) const {
-  return history_.in_step && !sample.new_segment && !full_requested_ &&
-         history_.since_full.size() <= config_.full_every && sample.time_s == history_.time_s + config_.tau_s;
-}
-
 EncodedMessage TelemetryEncoder::encode(const Sample& sample) {
   std::string bytes;
   dccl::BitWriter out(&bytes);
@@ -46,19 +41,25 @@ EncodedMessage TelemetryEncoder::encode(const Sample& sample, dccl::BitWriter& o
   message.position = quantise(sample);
   message.sequence = (history_.sequence + 1) % kSequenceModulus;
   const uint64_t start = out.position();
-  bool delta = delta_possible(sample);
+  const bool fresh = !history_.in_step || fresh_requested_;
+  // The next sample of the stream: both ends can predict it.
+  const bool next = !fresh && !sample.new_segment && sample.time_s == history_.time_s + config_.tau_s;
+  bool in_bounds = next;
   Prior prior;
-  if (delta) {
+  Innovation innovation{};
+  if (next) {
     prior = predictor_.prior();
     for (int axis = 0; axis < kAxes; ++axis) {
       const int64_t d = message.position[axis] - prior.position[axis];
-      if (d < config_.innovation_min || d >= config_.innovation_max) delta = false;
-      message.innovation[axis] = static_cast<int32_t>(d);
+      if (d < config_.innovation_min || d >= config_.innovation_max) in_bounds = false;
+      innovation[axis] = static_cast<int32_t>(d);
     }
   }
+  const bool delta = in_bounds && !full_requested_ && history_.since_full.size() <= config_.full_every;
   message.kind = delta ? MessageKind::kDelta : MessageKind::kFull;
   write_header(out, Header{message.kind, message.sequence});
   if (delta) {
+    message.innovation = innovation;
     dccl::arith::Encoder coder(out);
     for (int axis = 0; axis < kAxes; ++axis)
       coder.encode(*prior.tables[axis], predictor_.model().symbol_of(message.innovation[axis]));
@@ -67,12 +68,22 @@ EncodedMessage TelemetryEncoder::encode(const Sample& sample, dccl::BitWriter& o
     history_.since_full.push_back(message.position);
   } else {
     const int64_t time_of_day = ((sample.time_s % kSecondsPerDay) + kSecondsPerDay) % kSecondsPerDay;
-    write_full_body(out, region_, FullBody{time_of_day, message.position});
-    message.innovation = {};
-    predictor_.reset(message.position);
+    FullBody body{time_of_day, message.position};
+    body.fresh = message.fresh = fresh;
+    body.continues = in_bounds;
+    body.check = fresh ? 0 : predictor_.check();
+    write_full_body(out, region_, body);
+    if (fresh) {
+      predictor_.start_fresh(message.position);
+    } else if (in_bounds) {
+      predictor_.accept(message.position, innovation);
+    } else {
+      predictor_.re_anchor(message.position);
+    }
     history_.since_full.assign(1, message.position);
+    history_.at_full = predictor_.save();
     history_.in_step = true;
-    full_requested_ = false;
+    full_requested_ = fresh_requested_ = false;
   }
   message.bits = out.position() - start;
   message.body_bits = message.bits - kHeaderBits;
@@ -85,17 +96,17 @@ bool TelemetryEncoder::restore(std::string_view state) {
   std::optional<StreamHistory> history = parse_history(state, fingerprint_);
   if (history && replay(config_, *history, &predictor_)) {
     history_ = std::move(*history);
-    full_requested_ = false;
+    full_requested_ = fresh_requested_ = false;
     return true;
   }
-  history_ = StreamHistory{};
-  full_requested_ = true;
+  history_ = StreamHistory{};  // not in step: the next message is a fresh full
+  full_requested_ = fresh_requested_ = true;
   return false;
 }
 
 bool replay(const TelemetryConfig& config, const StreamHistory& history, StreamPredictor* predictor) {
   if (history.since_full.empty()) return true;
-  predictor->reset(history.since_full[0]);
+  if (!predictor->load(history.at_full)) return false;
   for (size_t i = 1; i < history.since_full.size(); ++i) {
     const Prior prior = predictor->prior();
     Innovation innovation;

@@ -11,6 +11,15 @@
 // Otherwise it goes as a delta: the innovation against the shared
 // prediction, arithmetic coded.
 //
+// A full keeps what the models learned (telemetry_message.h, the full's
+// fresh/continues/check bits): it is fresh (both ends forget their
+// statistics) only for the stream's first message after the encoder lost
+// its state and after request_fresh(); it continues the observer when it
+// is just the next sample sent in full (a delta could have carried it: the
+// periodic full, or one requested), so what follows costs what it would
+// have cost without it; otherwise (a gap in time, an innovation out of
+// bounds) it re-anchors the observer and keeps the statistics.
+//
 // Deltas must reach the receiver in order and all of them (the link resends
 // a lost one); state() is what to persist after each message so that a
 // restarted sender continues the same stream.
@@ -36,6 +45,7 @@ struct Sample {
 
 struct EncodedMessage {
   MessageKind kind = MessageKind::kFull;
+  bool fresh = false;  // a full with which both ends start the statistics afresh
   uint32_t sequence = 0;
   std::string bytes;       // the message alone, zero-padded to whole bytes
   uint64_t bits = 0;       // header included
@@ -56,6 +66,9 @@ class TelemetryEncoder {
 
   // The next message is a full transmission.
   void request_full() { full_requested_ = true; }
+  // The next message is a full with which both ends start their statistics
+  // afresh: the receiver lost them, or will not see a message they include.
+  void request_fresh() { full_requested_ = fresh_requested_ = true; }
 
   std::string state() const { return serialize(history_, fingerprint_); }
   // False (and the encoder starts over: next a full) for bytes that are
@@ -66,7 +79,6 @@ class TelemetryEncoder {
 
  private:
   GridPosition quantise(const Sample& sample) const;
-  bool delta_possible(const Sample& sample) const;
 
   TelemetryConfig config_;
   uint64_t fingerprint_;
@@ -74,11 +86,12 @@ class TelemetryEncoder {
   StreamPredictor predictor_;
   StreamHistory history_;
   bool full_requested_ = false;
+  bool fresh_requested_ = false;
 };
 
-// Replays history into predictor (reset at [0], accept the rest). False when
-// an innovation falls outside the bounds (the history is not one this
-// config produced).
+// Replays history into predictor (the state at the full, then accept the
+// samples after it). False when that state does not load or an innovation
+// falls outside the bounds (the history is not one this config produced).
 bool replay(const TelemetryConfig& config, const StreamHistory& history, StreamPredictor* predictor);
 
 }  // namespace acomms::telemetry

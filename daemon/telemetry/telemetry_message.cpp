@@ -49,13 +49,17 @@ Header read_header(dccl::BitReader& in) {
 }
 
 unsigned full_body_bits(const RegionGrid& region) {
-  return kTimeOfDayBits + region.bits[0] + region.bits[1] + region.bits[2];
+  return kTimeOfDayBits + region.bits[0] + region.bits[1] + region.bits[2] + 2 + kStatisticsCheckBits;
 }
 
 void write_full_body(dccl::BitWriter& out, const RegionGrid& region, const FullBody& body) {
   out.write(static_cast<uint64_t>(body.time_of_day_s), kTimeOfDayBits);
   for (int axis = 0; axis < kAxes; ++axis)
     out.write(static_cast<uint64_t>(body.position[axis] - region.min[axis]), region.bits[axis]);
+  out.write(body.fresh ? 1 : 0, 1);
+  if (body.fresh) return;
+  out.write(body.continues ? 1 : 0, 1);
+  out.write(body.check & ((1u << kStatisticsCheckBits) - 1), kStatisticsCheckBits);
 }
 
 FullBody read_full_body(dccl::BitReader& in, const RegionGrid& region) {
@@ -71,6 +75,11 @@ FullBody read_full_body(dccl::BitReader& in, const RegionGrid& region) {
                                std::to_string(cell) + " is outside the region's " +
                                std::to_string(region.cells[axis]) + " cells");
     body.position[axis] = region.min[axis] + static_cast<int64_t>(cell);
+  }
+  body.fresh = in.read(1) == 1;
+  if (!body.fresh) {
+    body.continues = in.read(1) == 1;
+    body.check = static_cast<uint32_t>(in.read(kStatisticsCheckBits));
   }
   return body;
 }

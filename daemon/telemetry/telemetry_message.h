@@ -8,6 +8,21 @@
 //   full:  time of day  17 bits, whole seconds since 00:00 UTC (< 86400)
 //          x, y, z      each uniform over the config's region on the
 //                       precision grid: ceil(log2(cells)) bits
+//          fresh        1 bit: 1 both ends start their statistics afresh
+//                       (the sender has none to keep, or the receiver said
+//                       it lost them); 0 they carry on, and then
+//          continues    1 bit: 1 the position is the next sample of the
+//                       stream (a delta could have carried it: both ends
+//                       accept it as one, observer and statistics); 0 the
+//                       observer re-anchors at it
+//          check        8 bits: the low bits of the sender's
+//                       StreamPredictor::check() before this full; a
+//                       receiver whose own differs does not hold the
+//                       sender's statistics and decodes no delta until a
+//                       fresh full
+//          (The fresh/continues/check bits are new in this layout: a
+//          receiver of the earlier one finds bits left over after the
+//          position and counts the full undecodable.)
 //   delta: x, y, z innovations as one arithmetic codeword (the three axes'
 //          symbols in order, then the coder's exact end), so the message
 //          ends exactly where the decoder stops and the next field of a
@@ -31,6 +46,7 @@ inline constexpr uint32_t kSequenceModulus = 1u << kSequenceBits;
 inline constexpr unsigned kHeaderBits = 1 + kSequenceBits;
 inline constexpr unsigned kTimeOfDayBits = 17;
 inline constexpr int64_t kSecondsPerDay = 86400;
+inline constexpr unsigned kStatisticsCheckBits = 8;
 
 // The region on the precision grid: cell i of axis a is min[a] + i.
 struct RegionGrid {
@@ -52,8 +68,11 @@ Header read_header(dccl::BitReader& in);
 struct FullBody {
   int64_t time_of_day_s = 0;
   GridPosition position{};
+  bool fresh = true;
+  bool continues = false;   // when not fresh
+  uint32_t check = 0;       // when not fresh: < 2^kStatisticsCheckBits
 };
-// Bits a full body takes.
+// Bits a full body takes at most (one that carries the statistics on).
 unsigned full_body_bits(const RegionGrid& region);
 // position must be inside region, 0 <= time_of_day_s < 86400.
 void write_full_body(dccl::BitWriter& out, const RegionGrid& region, const FullBody& body);

@@ -66,7 +66,7 @@ void TelemetryNode::restore(const StoredStreams& stored, queue::EventLogReader& 
   }
   last_event_seq_ = stored.last_received_seq;
   // Received after the last state we stored: consumed again, in order.
-  const std::vector<std::string> types{std::string(kFullType), std::string(kDeltaType)};
+  const std::vector<std::string> types{std::string(kFullType), std::string(kDeltaType), std::string(kFeedbackType)};
   size_t replayed = 0;
   for (;;) {
     std::vector<queue::StoredReceived> batch = events.received_after(last_event_seq_, types, std::nullopt, 1000);
@@ -126,18 +126,11 @@ size_t TelemetryNode::on_fix(const Fix& fix) {
         ++counters_.messages_refused;
         // The receiver will never see it: whatever follows must not depend on it.
         auto it = senders_.find(receiver);
-        if (it != senders_.end()) it->second.request_full();
+        if (it != senders_.end()) it->second.request_fresh();
       });
       // The state after the message: the writer commits in order, so the
       // stored state is never ahead of the queue (restore() handles behind).
-      std::string state = sender.state();
-      writer_.post([this, receiver = receiver, state = std::move(state)](store::Database&) {
-        store::Statement& save =
-            writer_.prepared("INSERT OR REPLACE INTO telemetry_sender (receiver, state) VALUES (?, ?)");
-        save.bind(1, int64_t{receiver}).bind_blob(2, state);
-        save.step();
-        save.reset();
-      });
+      save_sender(receiver, sender, std::nullopt);
       ++counters_.messages_queued;
       ++queued;
     }
@@ -145,11 +138,54 @@ size_t TelemetryNode::on_fix(const Fix& fix) {
   return queued;
 }
 
+void TelemetryNode::save_sender(int32_t receiver, const StreamSender& sender, std::optional<int64_t> event_seq) {
+  writer_.post([this, receiver, state = sender.state(), event_seq](store::Database&) {
+    store::Statement& save = writer_.prepared("INSERT OR REPLACE INTO telemetry_sender (receiver, state) VALUES (?, ?)");
+    save.bind(1, int64_t{receiver}).bind_blob(2, state);
+    save.step();
+    save.reset();
+    if (!event_seq) return;
+    store::Statement& progress =
+        writer_.prepared("UPDATE telemetry_progress SET last_seq = max(last_seq, ?) WHERE name = 'received'");
+    progress.bind(1, *event_seq);
+    progress.step();
+    progress.reset();
+  });
+}
+
 void TelemetryNode::when_stored(std::function<void(std::exception_ptr)> stored) {
   ACOMMS_ASSERT_CORE_THREAD();
   // The writer commits in order: an empty request's commit follows every
   // request queued before it.
   writer_.post([](store::Database&) {}, std::move(stored));
+}
+
+void TelemetryNode::send_feedback(int32_t src, StreamReceiver& receiver) {
+  std::optional<Feedback> due = receiver.take_feedback();
+  if (!due || !submit_) return;
+  WireFeedback feedback{own_id_, src, due->heard};
+  ++counters_.feedback_sent;
+  spdlog::info("telemetry from {}: asking it for a fresh full (statistics not held; last heard {})", src,
+               due->heard ? std::to_string(*due->heard) : std::string("nothing"));
+  submit_(to_dccl(codec_, feedback), [src](bool ok) {
+    // Not queued: the receiver asks again at the next full it consumes.
+    if (!ok) spdlog::warn("telemetry from {}: request for a fresh full not queued", src);
+  });
+}
+
+void TelemetryNode::on_feedback(const WireFeedback& feedback, int64_t event_seq) {
+  ++counters_.feedback_received;
+  last_event_seq_ = std::max(last_event_seq_, event_seq);
+  auto it = senders_.find(feedback.src);
+  if (it == senders_.end()) {
+    ++counters_.not_for_us;  // no stream to that node (any more)
+    return;
+  }
+  if (it->second.on_feedback(feedback.heard)) {
+    ++counters_.fresh_requested;
+    spdlog::info("telemetry to {}: it lost the statistics: the next full starts them afresh", feedback.src);
+  }
+  save_sender(feedback.src, it->second, last_event_seq_);
 }
 
 StreamReceiver& TelemetryNode::receiver_for(int32_t src) {
@@ -162,6 +198,23 @@ void TelemetryNode::on_received(const queue::ReceivedMessage& message) {
   ACOMMS_ASSERT_CORE_THREAD();
   if (!is_telemetry_type(message.type) || !message.message) return;
   ++counters_.received;
+  if (message.type == kFeedbackType) {
+    WireFeedback feedback;
+    try {
+      feedback = feedback_from_dccl(*message.message);
+    } catch (const std::invalid_argument& e) {
+      ++counters_.malformed;
+      spdlog::warn("telemetry: received {} from {} refused: {}", message.type, message.src, e.what());
+      return;
+    }
+    if (feedback.dest != own_id_) {
+      ++counters_.not_for_us;
+      return;
+    }
+    feedback.src = message.src;
+    on_feedback(feedback, message.seq);
+    return;
+  }
   WireMessage wire;
   try {
     wire = from_dccl(*message.message);
@@ -182,6 +235,9 @@ void TelemetryNode::consume(const WireMessage& message, int64_t event_seq, doubl
   StreamReceiver& receiver = receiver_for(message.src);
   std::vector<ReceivedPosition> positions = receiver.receive(message, now);
   last_event_seq_ = std::max(last_event_seq_, event_seq);
+  // Queued before the state is posted: a kill between the two consumes the
+  // message again at restart and asks again (at worst one extra request).
+  send_feedback(message.src, receiver);
   writer_.post(
       [this, src = message.src, state = receiver.state(), positions, seq = last_event_seq_](store::Database&) {
         store::Statement& save =

@@ -21,6 +21,10 @@
 //   restored and the received telemetry events after that seq are
 //   consumed again, so a kill between the two writes loses nothing.
 //   Positions are published once they are stored.
+// - Statistics outlive fulls: a receiver that lost them queues a
+//   PositionFeedback to the sender (stream_receiver.h), which the sender
+//   answers with a fresh full; the sender's state after it is stored with
+//   the progress, so a feedback consumed is never consumed twice.
 //
 // Core thread, but for read_state() (before the writer owns the store) and
 // the publish callback (the writer's thread).
@@ -65,6 +69,9 @@ struct NodeCounters {
   uint64_t received = 0;
   uint64_t malformed = 0;  // telemetry types with fields out of range
   uint64_t not_for_us = 0;
+  uint64_t feedback_sent = 0;      // requests for a fresh full, to senders
+  uint64_t feedback_received = 0;  // from receivers
+  uint64_t fresh_requested = 0;    // feedback that made the next full fresh
 };
 
 class TelemetryNode {
@@ -107,6 +114,11 @@ class TelemetryNode {
  private:
   StreamReceiver& receiver_for(int32_t src);
   void consume(const WireMessage& message, int64_t event_seq, double now);
+  void on_feedback(const WireFeedback& feedback, int64_t event_seq);
+  // Queues the feedback `receiver` has due, if any.
+  void send_feedback(int32_t src, StreamReceiver& receiver);
+  // Posts a sender's state (and, with event_seq, the progress) to the writer.
+  void save_sender(int32_t receiver, const StreamSender& sender, std::optional<int64_t> event_seq);
 
   NodeSettings settings_;
   int32_t own_id_;

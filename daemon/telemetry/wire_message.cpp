@@ -7,7 +7,9 @@
 namespace acomms::telemetry {
 namespace gp = google::protobuf;
 
-bool is_telemetry_type(std::string_view type) { return type == kFullType || type == kDeltaType; }
+bool is_telemetry_type(std::string_view type) {
+  return type == kFullType || type == kDeltaType || type == kFeedbackType;
+}
 
 std::vector<bool> body_of(const EncodedMessage& message) {
   std::vector<bool> body;
@@ -76,6 +78,37 @@ WireMessage from_dccl(const gp::Message& message) {
   }
   out.body.reserve(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) out.body.push_back(r->GetRepeatedBool(message, body, i));
+  return out;
+}
+
+std::unique_ptr<gp::Message> to_dccl(const dccl::Codec& codec, const WireFeedback& feedback) {
+  if (feedback.heard && *feedback.heard >= kWireSequenceModulus)
+    throw std::invalid_argument("telemetry feedback: heard out of range");
+  std::unique_ptr<gp::Message> out = codec.new_message(kFeedbackType);
+  const gp::Descriptor* d = out->GetDescriptor();
+  const gp::Reflection* r = out->GetReflection();
+  r->SetInt32(out.get(), d->FindFieldByName("src"), feedback.src);
+  r->SetInt32(out.get(), d->FindFieldByName("dest"), feedback.dest);
+  r->SetUInt32(out.get(), d->FindFieldByName("heard"), feedback.heard.value_or(kWireSequenceModulus));
+  return out;
+}
+
+WireFeedback feedback_from_dccl(const gp::Message& message) {
+  const gp::Descriptor* d = message.GetDescriptor();
+  if (d->full_name() != kFeedbackType) throw std::invalid_argument(d->full_name() + " is not telemetry feedback");
+  const gp::Reflection* r = message.GetReflection();
+  const gp::FieldDescriptor* src = d->FindFieldByName("src");
+  const gp::FieldDescriptor* dest = d->FindFieldByName("dest");
+  const gp::FieldDescriptor* heard = d->FindFieldByName("heard");
+  if (src == nullptr || dest == nullptr || heard == nullptr)
+    throw std::invalid_argument(d->full_name() + " lacks src, dest or heard");
+  WireFeedback out;
+  out.src = r->GetInt32(message, src);
+  out.dest = r->GetInt32(message, dest);
+  const uint32_t value = r->GetUInt32(message, heard);
+  if (value > kWireSequenceModulus)
+    throw std::invalid_argument(d->full_name() + ".heard " + std::to_string(value) + " is above 4096");
+  if (value < kWireSequenceModulus) out.heard = value;
   return out;
 }
 

@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,8 +32,10 @@ namespace acomms::telemetry {
 
 inline constexpr std::string_view kFullType = "acomms.telemetry.PositionFull";
 inline constexpr std::string_view kDeltaType = "acomms.telemetry.PositionDelta";
+inline constexpr std::string_view kFeedbackType = "acomms.telemetry.PositionFeedback";
 inline constexpr int kFullId = 110;
 inline constexpr int kDeltaId = 111;
+inline constexpr int kFeedbackId = 112;
 inline constexpr uint32_t kWireSequenceModulus = 4096;
 // The largest bodies messages.proto allows (max_repeat).
 inline constexpr size_t kMaxFullBodyBits = 127;
@@ -46,7 +49,16 @@ struct WireMessage {
   std::vector<bool> body;
 };
 
-// Whether a DCCL type name is one of the telemetry types.
+// PositionFeedback: the receiver `src` asks the sender `dest` for a fresh
+// full (stream_receiver.h, Feedback).
+struct WireFeedback {
+  int32_t src = 0;
+  int32_t dest = 0;
+  std::optional<uint32_t> heard;  // < kWireSequenceModulus
+};
+
+// Whether a DCCL type name is one of the telemetry types (the stream's and
+// the feedback).
 bool is_telemetry_type(std::string_view type);
 
 // The body bits of a library message (its header stripped).
@@ -64,6 +76,10 @@ std::unique_ptr<google::protobuf::Message> to_dccl(const dccl::Codec& codec, con
 // Reads a decoded DCCL message of a telemetry type. Throws
 // std::invalid_argument for another type or a field out of range.
 WireMessage from_dccl(const google::protobuf::Message& message);
+
+// The same for feedback (kFeedbackType).
+std::unique_ptr<google::protobuf::Message> to_dccl(const dccl::Codec& codec, const WireFeedback& feedback);
+WireFeedback feedback_from_dccl(const google::protobuf::Message& message);
 
 // (a - b) mod 4096, as a number in [-2048, 2048): > 0 when a is newer.
 int32_t sequence_distance(uint32_t a, uint32_t b);

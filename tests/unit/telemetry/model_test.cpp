@@ -72,7 +72,7 @@ TEST(GaussianModel, NarrowVarianceMakesZeroNearlyFree) {
   EXPECT_GT(bits_of(table, 52), 15.0);  // far tails cost about log2(2^16) bits
 }
 
-TEST(AdaptiveModel, CountsWhatWasSentAndForgetsAtAFull) {
+TEST(AdaptiveModel, CountsWhatWasSentAndForgetsAtAFreshStart) {
   AdaptiveModel model(-50, 51);
   model.observe(0, 3);
   model.observe(0, 3);
@@ -84,6 +84,56 @@ TEST(AdaptiveModel, CountsWhatWasSentAndForgetsAtAFull) {
   EXPECT_EQ(model.table(2, 0).total(), 101u);
   model.reset();
   EXPECT_EQ(model.table(0, 0).total(), 101u);
+}
+
+// Statistics outlive fulls, so counts would grow without bound on a long
+// track: halved (integer division) once kForgetAfter are in an axis.
+TEST(AdaptiveModel, HalvesItsCountsOnceKForgetAfterInnovationsAreInThem) {
+  AdaptiveModel model(-50, 51);
+  const int64_t n = ProbabilityModel::kForgetAfter;
+  int64_t fives = 0;
+  for (int64_t i = 0; i + 1 < n; ++i) {
+    model.observe(0, i % 3 == 0 ? 5 : 0);
+    fives += i % 3 == 0;
+  }
+  EXPECT_EQ(model.table(0, 0).total(), static_cast<uint64_t>(101 + n - 1));
+  model.observe(0, 0);
+  EXPECT_EQ(model.table(0, 0).frequency(model.symbol_of(5)), static_cast<uint64_t>(fives / 2 + 1));
+  EXPECT_EQ(model.table(0, 0).frequency(model.symbol_of(0)), static_cast<uint64_t>((n - fives) / 2 + 1));
+  EXPECT_EQ(model.table(1, 0).total(), 101u);
+}
+
+TEST(ProbabilityModels, StatisticsComeBackExactlyAndImpossibleOnesAreRefused) {
+  for (ModelKind kind : {ModelKind::kAdaptive, ModelKind::kLearned}) {
+    TelemetryConfig config;
+    config.model = kind;
+    std::unique_ptr<ProbabilityModel> a = make_model(config), b = make_model(config);
+    const int innovations[] = {2, -7, 0, 0, 13, -50, 50, 1};
+    for (int i = 0; i < 40; ++i) a->observe(i % 3, innovations[i % 8]);
+    const std::vector<int64_t> statistics = a->statistics();
+    ASSERT_FALSE(statistics.empty());
+    ASSERT_TRUE(b->restore_statistics(statistics));
+    EXPECT_EQ(b->statistics(), statistics);
+    for (int axis = 0; axis < kAxes; ++axis) {
+      const auto& x = a->table(axis, 30.0);
+      const auto& y = b->table(axis, 30.0);
+      for (size_t s = 0; s < x.size(); ++s) ASSERT_EQ(x.frequency(s), y.frequency(s)) << name_of(kind) << " " << s;
+    }
+    std::vector<int64_t> wrong = statistics;
+    wrong.pop_back();
+    EXPECT_FALSE(b->restore_statistics(wrong));
+    wrong = statistics;
+    wrong[5] = -1;
+    EXPECT_FALSE(b->restore_statistics(wrong));
+    wrong = statistics;
+    wrong[0] = ProbabilityModel::kForgetAfter;
+    EXPECT_FALSE(b->restore_statistics(wrong));
+    EXPECT_EQ(b->statistics(), statistics) << "a refused restore changes nothing";
+  }
+  TelemetryConfig uniform;
+  uniform.model = ModelKind::kUniform;
+  EXPECT_TRUE(make_model(uniform)->statistics().empty());
+  EXPECT_FALSE(make_model(uniform)->restore_statistics({1}));
 }
 
 TEST(LearnedModel, StartsAsTheObserversGaussian) {

@@ -65,7 +65,9 @@ TEST(NodeSettingsTest, TelemetryQueuesAreAckedOldestFirstAndOutOfTheDuplicateFil
   own->set_type(std::string(kDeltaType));
   own->mutable_policy()->set_value_base(3);
   configure_queues(&queues, node_settings(parse("ttl_s: 900"), 1));
-  ASSERT_EQ(queues.type_size(), 2);
+  // The stream's two types and the receiver's feedback to its sender.
+  ASSERT_EQ(queues.type_size(), 3);
+  EXPECT_EQ(queues.type(2).type(), kFeedbackType);
   for (const v1::QueueTypeConfig& entry : queues.type()) {
     EXPECT_TRUE(entry.policy().ack()) << entry.type();
     EXPECT_FALSE(entry.policy().newest_first()) << entry.type();

@@ -130,7 +130,11 @@ TEST(RoundTrip, LearnedModelBeatsTheThesisModelsOnAnAuvTrack) {
       config.model = model;
       bits[model] = round_trip(samples, config).mean_delta_bits;
     }
-    EXPECT_LT(bits[ModelKind::kLearned], bits[ModelKind::kAdaptive] - 2) << name_of(observer);
+    // 0.5, not 2 bits, since the statistics outlive fulls: the adaptive
+    // counts no longer restart uniform every 61 samples (on this track
+    // 13.4 -> 8.7 bits with fixed speed, 15.5 -> 10.9 with Kalman; learned
+    // 8.3 -> 7.5 and 11.3 -> 10.0).
+    EXPECT_LT(bits[ModelKind::kLearned], bits[ModelKind::kAdaptive] - 0.5) << name_of(observer);
     EXPECT_LT(bits[ModelKind::kLearned], bits[ModelKind::kGaussian] - 2) << name_of(observer);
     EXPECT_LT(bits[ModelKind::kAdaptive], bits[ModelKind::kUniform]) << name_of(observer);
   }

@@ -230,8 +230,11 @@ TEST(StreamLinkTest, SenderRestartedWithoutStateInTheUpperHalfOfTheCycleIsFollow
 
 // The restarted sender's full lost once and resent after its first deltas
 // (which the receiver acked, so they never come again): they follow on from
-// it. A full of the old count held past a gap is delivered with its deltas
-// first, as the gap timeout would have delivered them half an hour later.
+// it. A full of the old count held past a gap is delivered first, as the gap
+// timeout would have delivered it half an hour later; the old count's deltas
+// after it are not decoded (coded against statistics that include the lost
+// delta: statistics outlive fulls), and the new count's fresh full puts the
+// receiver in step again.
 TEST(StreamLinkTest, RestartFullDeliversTheOldCountsHeldFullsThenItsOwnDeltasThatCameFirst) {
   TelemetryConfig config;
   const Restart r = restart_after(config, 22, 3000, 30, 600);
@@ -248,15 +251,16 @@ TEST(StreamLinkTest, RestartFullDeliversTheOldCountsHeldFullsThenItsOwnDeltasTha
   ASSERT_EQ(receiver.held(), r.before.size() - 1 - lost);
   const double now = static_cast<double>(r.after[5].sample.time_s);
   for (size_t i = 1; i <= 5; ++i) EXPECT_TRUE(receiver.receive(r.after[i].message, now).empty());
-  // The full: the old count's held full and its deltas, the full, its 5 deltas.
+  // The full: the old count's held full, the full, its 5 deltas.
   std::vector<ReceivedPosition> at_once = receiver.receive(r.after[0].message, now);
-  EXPECT_EQ(at_once.size(), (r.before.size() - old_full) + 6);
+  EXPECT_EQ(at_once.size(), 1u + 6);
+  EXPECT_EQ(receiver.counters().out_of_step, r.before.size() - old_full - 1);
   append(&got, at_once);
   for (size_t i = 6; i < r.after.size(); ++i) {
     append(&got, receiver.receive(r.after[i].message, static_cast<double>(r.after[i].sample.time_s)));
   }
   std::vector<Sent> expected(r.before.begin(), r.before.begin() + static_cast<long>(lost));
-  expected.insert(expected.end(), r.before.begin() + static_cast<long>(old_full), r.before.end());
+  expected.push_back(r.before[old_full]);
   expected.insert(expected.end(), r.after.begin(), r.after.end());
   expect_positions(got, expected, config);
   EXPECT_EQ(receiver.held(), 0u);
@@ -282,15 +286,19 @@ TEST(StreamLinkTest, SenderBackWithoutStateAfterHalfACycleOfSilenceIsFollowedAtO
 // Not a restart: one sender, its navigation out for 6 h (2160 tau, past
 // half a cycle), the last 5 messages before it lost for good, and the first
 // full after it lost once and resent after its first 3 deltas. Its own
-// deltas, heard after it was sampled, follow on from it: every position
-// after the silence arrives, at once, none is held.
-TEST(StreamLinkTest, AfterHalfACycleOfSilenceDeltasThatOvertookTheirFullFollowIt) {
+// deltas, heard after it was sampled, follow on from it (consumed in order,
+// none held) but are not decoded: the sender's statistics include the 5
+// lost messages. The receiver asks; the sender's next message is a fresh
+// full, and every position from it on arrives.
+TEST(StreamLinkTest, AfterHalfACycleOfSilenceDeltasThatOvertookTheirFullFollowItAndAFreshFullResumes) {
   TelemetryConfig config;
   const std::vector<Sample> samples = track_samples(eval::TrackKind::kAuv, 31, 3 * 3600, config.tau_s);
   ASSERT_GT(samples.size(), 140u);
   std::vector<Sample> before(samples.begin(), samples.begin() + 100);
-  std::vector<Sample> after(samples.begin() + 100, samples.begin() + 140);
+  std::vector<Sample> after(samples.begin() + 100, samples.begin() + 104);
+  std::vector<Sample> resumed(samples.begin() + 104, samples.begin() + 140);
   for (Sample& sample : after) sample.time_s += 6 * 3600;
+  for (Sample& sample : resumed) sample.time_s += 6 * 3600;
   after.front().new_segment = true;
   StreamSender sender(config, 2, 1);
   const std::vector<Sent> a = send_all(sender, before);
@@ -302,13 +310,21 @@ TEST(StreamLinkTest, AfterHalfACycleOfSilenceDeltasThatOvertookTheirFullFollowIt
   const double now = static_cast<double>(b[3].sample.time_s);
   for (size_t i = 1; i <= 3; ++i) EXPECT_TRUE(receiver.receive(b[i].message, now).empty());
   std::vector<ReceivedPosition> got = receiver.receive(b[0].message, now);
-  EXPECT_EQ(got.size(), 4u) << "the full and the 3 deltas that came before it";
-  for (size_t i = 4; i < b.size(); ++i) {
-    append(&got, receiver.receive(b[i].message, static_cast<double>(b[i].sample.time_s)));
-  }
-  expect_positions(got, b, config);
+  ASSERT_EQ(got.size(), 1u) << "the full; the 3 deltas that came before it are consumed, not decoded";
+  expect_positions(got, {b[0]}, config);
   EXPECT_EQ(receiver.held(), 0u);
-  EXPECT_EQ(receiver.counters().out_of_step, 0u);
+  EXPECT_EQ(receiver.counters().out_of_step, 3u);
+  const std::optional<Feedback> ask = receiver.take_feedback();
+  ASSERT_TRUE(ask);
+  EXPECT_EQ(ask->heard, b[3].message.sequence);
+  ASSERT_TRUE(sender.on_feedback(ask->heard));
+  const std::vector<Sent> c = send_all(sender, resumed);
+  ASSERT_EQ(c.front().message.kind, MessageKind::kFull);
+  got.clear();
+  for (const Sent& s : c) append(&got, receiver.receive(s.message, static_cast<double>(s.sample.time_s)));
+  expect_positions(got, c, config);
+  EXPECT_EQ(receiver.held(), 0u);
+  EXPECT_EQ(receiver.counters().out_of_step, 3u);
 }
 
 // The reverse risk: a full of the old count resent late (its ACK was lost)
@@ -358,28 +374,46 @@ TEST(StreamLinkTest, ReceiverRestoredMidStreamWithHeldMessagesContinues) {
   expect_positions(got, sent, config);
 }
 
+// The link closed: what the receiver asks for reaches the sender before
+// its next message. The full past the gap gives its position, but the
+// statistics it carries include the lost delta: the receiver asks once, and
+// from the sender's next (fresh) full on everything arrives.
 TEST(StreamLinkTest, GapThatNeverFillsIsSkippedAtTheNextFullAfterTheTimeout) {
   TelemetryConfig config;
   config.full_every = 20;
   StreamSender sender(config, 2, 1);
-  const std::vector<Sent> sent = send_all(sender, track_samples(eval::TrackKind::kAuv, 6, 3600, config.tau_s));
+  const std::vector<Sample> samples = track_samples(eval::TrackKind::kAuv, 6, 3600, config.tau_s);
   StreamReceiver receiver(config, 2, /*gap_timeout_s=*/100);
+  std::vector<Sent> sent;
   std::vector<ReceivedPosition> got;
   const size_t lost = 5;  // a delta the sender gave up on
-  ASSERT_EQ(sent[lost].message.kind, MessageKind::kDelta);
-  size_t next_full = lost + 1;
-  while (sent[next_full].message.kind != MessageKind::kFull) ++next_full;
+  std::optional<size_t> fresh;
   double now = kEpoch;
-  for (size_t i = 0; i < sent.size(); ++i) {
-    if (i == lost) continue;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    sent.push_back({sender.send(samples[i]), samples[i]});
+    if (i == lost) {
+      ASSERT_EQ(sent[i].message.kind, MessageKind::kDelta);
+      continue;
+    }
     now += 10;
     append(&got, receiver.receive(sent[i].message, now));
+    if (std::optional<Feedback> ask = receiver.take_feedback()) {
+      ASSERT_FALSE(fresh) << "asked once, at " << i;
+      ASSERT_TRUE(sender.on_feedback(ask->heard));
+      fresh = i + 1;
+    }
   }
+  ASSERT_TRUE(fresh);
+  ASSERT_LT(*fresh, sent.size());
+  EXPECT_EQ(sent[*fresh].message.kind, MessageKind::kFull);
   EXPECT_EQ(receiver.counters().gaps_skipped, 1u);
-  // Everything but the lost one and the deltas that depended on it, each
-  // exactly as sent.
+  size_t next_full = lost + 1;
+  while (sent[next_full].message.kind != MessageKind::kFull) ++next_full;
+  // Everything but the lost one, the deltas that depended on it and those
+  // until the fresh full, each exactly as sent.
   std::vector<Sent> expected(sent.begin(), sent.begin() + lost);
-  expected.insert(expected.end(), sent.begin() + static_cast<long>(next_full), sent.end());
+  expected.push_back(sent[next_full]);
+  expected.insert(expected.end(), sent.begin() + static_cast<long>(*fresh), sent.end());
   expect_positions(got, expected, config);
 }
 

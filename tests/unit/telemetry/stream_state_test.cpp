@@ -96,7 +96,10 @@ TEST(StreamState, AResentDuplicateIsIgnoredAndConsumesExactlyItsBits) {
   EXPECT_EQ(decoded.grid, second.position);
 }
 
-TEST(StreamState, AfterALostDeltaTheDecoderWaitsForAFullAndIsInStepAgain) {
+// The statistics outlive fulls, so a full that carries them on gives a
+// decoder that missed a delta its position but not its step: it waits for
+// the fresh full its receiver asks for (stream_receiver.h).
+TEST(StreamState, AfterALostDeltaTheDecoderWaitsForAFreshFullAndIsInStepAgain) {
   const std::vector<Sample> track = samples();
   TelemetryConfig config;
   TelemetryEncoder encoder(config);
@@ -105,11 +108,23 @@ TEST(StreamState, AfterALostDeltaTheDecoderWaitsForAFullAndIsInStepAgain) {
   encoder.encode(track[1]);  // lost
   EXPECT_EQ(decoder.decode(encoder.encode(track[2]).bytes).outcome, DecodeOutcome::kOutOfStep);
   EXPECT_EQ(decoder.decode(encoder.encode(track[3]).bytes).outcome, DecodeOutcome::kOutOfStep);
-  encoder.request_full();  // the link gave up on a message
-  const EncodedMessage full = encoder.encode(track[4]);
+  encoder.request_full();  // the periodic full: carries the statistics on
+  const EncodedMessage carried = encoder.encode(track[4]);
+  ASSERT_EQ(carried.kind, MessageKind::kFull);
+  EXPECT_FALSE(carried.fresh);
+  const DecodedMessage position = decoder.decode(carried.bytes);
+  EXPECT_EQ(position.outcome, DecodeOutcome::kPosition);
+  EXPECT_EQ(position.grid, carried.position);
+  EXPECT_FALSE(position.in_step);
+  EXPECT_EQ(decoder.decode(encoder.encode(track[5]).bytes).outcome, DecodeOutcome::kOutOfStep);
+  encoder.request_fresh();  // the receiver asked
+  const EncodedMessage full = encoder.encode(track[6]);
   EXPECT_EQ(full.kind, MessageKind::kFull);
-  EXPECT_EQ(decoder.decode(full.bytes).grid, full.position);
-  const EncodedMessage delta = encoder.encode(track[5]);
+  EXPECT_TRUE(full.fresh);
+  const DecodedMessage fresh = decoder.decode(full.bytes);
+  EXPECT_EQ(fresh.grid, full.position);
+  EXPECT_TRUE(fresh.in_step);
+  const EncodedMessage delta = encoder.encode(track[7]);
   EXPECT_EQ(delta.kind, MessageKind::kDelta);
   EXPECT_EQ(decoder.decode(delta.bytes).grid, delta.position);
 }
@@ -127,7 +142,7 @@ TEST(StreamState, AFullFromARestartedSenderResetsEvenWithTheLastSequenceNumber) 
     after.request_full();
     after.encode(track[i]);
   }
-  after.request_full();
+  after.request_fresh();  // its statistics are not the ones the receiver holds
   const EncodedMessage full = after.encode(track[20]);
   ASSERT_EQ(full.kind, MessageKind::kFull);
   ASSERT_EQ(full.sequence, 0u);

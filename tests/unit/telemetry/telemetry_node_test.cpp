@@ -58,7 +58,7 @@ class TelemetryNodeTest : public ::testing::Test {
     core::SystemClock clock;
     queue::QueueManager queues(codec_, v1::QueueConfig(), 1, clock, journal);
     int64_t seq = journal.last_received_seq();
-    TelemetryNode node(settings_, 1, codec_, writer, nullptr, nullptr,
+    TelemetryNode node(settings_, 1, codec_, writer, nullptr, submit(),
                        [this](const std::vector<ReceivedPosition>& positions) {
                          std::lock_guard lock(mutex_);
                          published_.insert(published_.end(), positions.begin(), positions.end());
@@ -86,6 +86,14 @@ class TelemetryNodeTest : public ::testing::Test {
     }
     writer.flush();
     writer.stop();
+  }
+
+  // What a node queues, into submitted_.
+  TelemetryNode::Submit submit() {
+    return [this](std::unique_ptr<google::protobuf::Message> message, std::function<void(bool)> done) {
+      submitted_.push_back(std::move(message));
+      done(true);
+    };
   }
 
   std::vector<ReceivedPosition> track() {
@@ -120,6 +128,7 @@ class TelemetryNodeTest : public ::testing::Test {
   std::vector<Sample> expected_;
   std::mutex mutex_;
   std::vector<ReceivedPosition> published_;
+  std::vector<std::unique_ptr<google::protobuf::Message>> submitted_;
 };
 
 TEST_F(TelemetryNodeTest, ReceiverKilledAfterTheEventLogBeforeItsStateLosesNothing) {
@@ -127,8 +136,61 @@ TEST_F(TelemetryNodeTest, ReceiverKilledAfterTheEventLogBeforeItsStateLosesNothi
   run(47, 90, 90);  // the restart consumes them first, then goes on
   run(90, 150, 150);
   expect_complete(track());
+  EXPECT_TRUE(submitted_.empty()) << "the statistics came back with the state: no fresh full asked for";
   std::lock_guard lock(mutex_);
   expect_complete(published_);  // published once each, in order
+}
+
+// The loop through the link: a receiver without state (first contact, or
+// a wiped store) meeting a stream mid-way queues PositionFeedback to its
+// sender; the sender that receives it sends a fresh full next.
+TEST_F(TelemetryNodeTest, AReceiverWithoutStateAsksAndTheSendersNextFullIsFresh) {
+  ASSERT_EQ(wire_[70].kind, MessageKind::kDelta);
+  run(70, 71, 71);
+  ASSERT_EQ(submitted_.size(), 1u);
+  const WireFeedback feedback = feedback_from_dccl(*submitted_[0]);
+  EXPECT_EQ(feedback.src, 1);
+  EXPECT_EQ(feedback.dest, 2);
+  EXPECT_FALSE(feedback.heard);
+  // Through DCCL as the link carries it.
+  const std::string bytes = codec_.encode(*submitted_[0]);
+
+  // The vehicle (2) sending to us (1).
+  v1::TelemetryConfig config;
+  config.add_receiver(1);
+  const NodeSettings vehicle = node_settings(config, 2);
+  store::Store store((dir_ / "vehicle").string());
+  store::GroupCommitWriter writer(store.db());
+  std::vector<std::unique_ptr<google::protobuf::Message>> sent;
+  TelemetryNode sender(vehicle, 2, codec_, writer, nullptr,
+                       [&sent](std::unique_ptr<google::protobuf::Message> message, std::function<void(bool)> done) {
+                         sent.push_back(std::move(message));
+                         done(true);
+                       },
+                       nullptr);
+  auto fix = [&sender](int n) { sender.on_fix(Fix{kStart + 10.0 * n, {15.0 * n, 2.0 * n, -20}}); };
+  for (int n = 0; n < 5; ++n) fix(n);
+  ASSERT_EQ(sent.size(), 5u);
+  EXPECT_EQ(from_dccl(*sent.back()).kind, MessageKind::kDelta);
+  queue::ReceivedMessage message;
+  message.type = std::string(kFeedbackType);
+  message.message = codec_.decode_as(message.type, bytes);
+  message.seq = 1;
+  message.src = 1;
+  message.dest = 2;
+  message.time = kStart + 45;
+  sender.on_received(message);
+  EXPECT_EQ(sender.counters().fresh_requested, 1u);
+  fix(5);
+  ASSERT_EQ(sent.size(), 6u);
+  const WireMessage full = from_dccl(*sent.back());
+  ASSERT_EQ(full.kind, MessageKind::kFull);
+  const RegionGrid region = region_grid(vehicle.stream);
+  EXPECT_TRUE(full.body.at(kTimeOfDayBits + region.bits[0] + region.bits[1] + region.bits[2])) << "fresh";
+  fix(6);
+  EXPECT_EQ(from_dccl(*sent.back()).kind, MessageKind::kDelta);
+  writer.flush();
+  writer.stop();
 }
 
 TEST_F(TelemetryNodeTest, RestartWithNothingNewRepublishesNothing) {
