@@ -1,6 +1,11 @@
 #include "gram_command.h"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -12,6 +17,8 @@
 #include "gram/bellhop_import.h"
 #include "gram/ctd_cast.h"
 #include "gram/profile_merge.h"
+#include "gram/shd_export.h"
+#include "gram/tl_csv.h"
 #include "gram/transmission_loss.h"
 #include "gram_plot.h"
 #include "gram_service_command.h"
@@ -22,6 +29,7 @@ namespace {
 
 struct GramOptions {
   std::string ctd, env, png, at;
+  std::string format = "csv";
   double bin_m = 1.0;
   double thin_mps = 0;
   bool mackenzie = false;
@@ -55,31 +63,39 @@ void run_ssp(const GramOptions& o) {
     std::cout << std::setprecision(3) << p.depth_m() << "," << std::setprecision(4) << p.speed_mps() << "\n";
 }
 
+// Writes `bytes` to standard output, all of it, or fails naming the cause.
+void write_stdout(const std::string& bytes) {
+  if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), stdout) != bytes.size())
+    throw std::runtime_error("cannot write the output: " + std::string(std::strerror(errno)));
+}
+
 void run_tl(const GramOptions& o) {
   const gram::Environment env = load_env(o.env);
-  const auto tl = gram::compute_transmission_loss(env, {o.threads});
+  const bool shd = o.format == "shd";
+  if (shd && o.png.empty() && ::isatty(STDOUT_FILENO))
+    throw UsageError("--format shd writes a binary file to standard output: redirect it, e.g. > field.shd");
+  gram::RunOptions run;
+  run.threads = o.threads;
+  run.keep_pressure = shd && o.png.empty();
+  const auto tl = gram::compute_transmission_loss(env, run);
   report_beams(env, tl.beam_count);
   if (!o.png.empty()) {
     write_tl_png(o.png, tl, env);
     return;
   }
-  std::ostringstream out;
-  out << "range_m,depth_m,tl_db\n";
-  auto row = [&](double r, double z, double v) {
-    out << r << "," << z << ",";
-    if (std::isnan(v)) out << "";  // no value on the source axis
-    else if (std::isinf(v)) out << "inf";
-    else out << std::fixed << std::setprecision(3) << v << std::defaultfloat;
-    out << "\n";
-  };
-  if (tl.irregular) {
-    for (std::size_t i = 0; i < tl.tl_db.size(); ++i) row(tl.range_m[i], tl.depth_m[i], tl.tl_db[i]);
+  if (shd) {
+    gram::ShdField field;
+    try {
+      field = gram::shd_field_of(tl, env);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--format shd: ") + e.what());
+    }
+    write_stdout(gram::write_shd(field, gram::ShdLayout::k2023));
   } else {
-    const std::size_t nr = tl.range_m.size();
-    for (std::size_t iz = 0; iz < tl.depth_m.size(); ++iz)
-      for (std::size_t ir = 0; ir < nr; ++ir) row(tl.range_m[ir], tl.depth_m[iz], tl.tl_db[iz * nr + ir]);
+    // Formatted on the run's threads; written block after block.
+    for (const auto& block : gram::tl_csv_blocks(tl, o.threads)) write_stdout(block);
   }
-  std::cout << out.str() << std::flush;
+  if (std::fflush(stdout) != 0) throw std::runtime_error("cannot write the output: " + std::string(std::strerror(errno)));
 }
 
 void run_arrivals(const GramOptions& o) {
@@ -139,10 +155,19 @@ CLI::App* add_gram_command(CLI::App& app, const GlobalOptions& global) {
   ssp->callback([] { run_ssp(options); });
 
   CLI::App* tl = gram->add_subcommand(
-      "tl", "Transmission loss on the environment's receiver grid as CSV range_m,depth_m,tl_db, or "
-            "a picture with --png");
+      "tl", "Transmission loss on the environment's receiver grid as CSV range_m,depth_m,tl_db (ranges and "
+            "depths exact, the shortest text that reads back as the model's value; TL to 0.001 dB, empty at "
+            "range 0, inf where no beam reaches), as BELLHOP's binary .shd with --format shd, or a picture "
+            "with --png");
   tl->add_option("--env", options.env, "BELLHOP-format environment")->required()->type_name("FILE.env");
-  tl->add_option("--png", options.png, "Draw TL against range and depth, with the profile, to this PNG")->type_name("FILE");
+  auto* png = tl->add_option("--png", options.png, "Draw TL against range and depth, with the profile, to this PNG")
+                  ->type_name("FILE");
+  tl->add_option("--format", options.format,
+                 "csv, or shd: the pressure field as BELLHOP writes it (2023 layout, rectilinear grids) to "
+                 "standard output, for BELLHOP's plotting tools")
+      ->check(CLI::IsMember({"csv", "shd"}))
+      ->excludes(png)
+      ->capture_default_str();
   tl->add_option("--threads", options.threads, "Threads (0: all cores); the result is the same")->capture_default_str();
   tl->footer(
       "Examples:\n"

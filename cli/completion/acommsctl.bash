@@ -340,9 +340,9 @@ _acommsctl() {
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --env|--threads|--timeout) COMPREPLY=(); return ;;
+        --env|--format|--threads|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --env --png --threads --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --env --png --format --threads --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "gram arrivals")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;

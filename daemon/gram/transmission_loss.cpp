@@ -103,21 +103,27 @@ TransmissionLoss compute_transmission_loss(const Environment& env, const RunOpti
   result.irregular = env.irregular_receivers();
   result.beam_count = beams;
   result.tl_db.assign(receivers.size(), 0.0);
+  if (options.keep_pressure) result.pressure.assign(receivers.size(), {0.0, 0.0});
   const auto& outputs = receivers.slot_outputs();
   for (std::size_t i = 0; i < receivers.size(); ++i) {
     double power = 0.0;
+    std::complex<double> p{0.0, 0.0};
     if (coherent) {
-      std::complex<double> p{0.0, 0.0};
       for (const Chunk& chunk : chunks) p += chunk.pressure[i];
       power = std::norm(p);
     } else {
       for (const Chunk& chunk : chunks) power += chunk.intensity[i];
+      if (options.keep_pressure) p = std::sqrt(power);
     }
     result.tl_db[outputs[i]] = power > 0 ? -10.0 * std::log10(power) : std::numeric_limits<double>::infinity();
+    if (options.keep_pressure) result.pressure[outputs[i]] = p;
   }
   for (const auto& column : receivers.columns())
     if (column.range_m <= 0)
-      for (std::size_t index : column.index) result.tl_db[index] = std::numeric_limits<double>::quiet_NaN();
+      for (std::size_t index : column.index) {
+        result.tl_db[index] = std::numeric_limits<double>::quiet_NaN();
+        if (options.keep_pressure) result.pressure[index] = {0.0, 0.0};
+      }
   return result;
 }
 

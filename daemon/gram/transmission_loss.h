@@ -10,6 +10,7 @@
 // Thread-safe: each call is independent.
 #pragma once
 
+#include <complex>
 #include <cstdint>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct RunOptions {
   unsigned threads = 0;
   // Polled once per beam; when cancelled the run throws ModelCancelled.
   const CancelToken* cancel = nullptr;
+  // Keep the field itself (TransmissionLoss::pressure), e.g. to write a
+  // .shd; off by default, as most callers want TL only.
+  bool keep_pressure = false;
 };
 
 struct TransmissionLoss {
@@ -33,6 +37,10 @@ struct TransmissionLoss {
   // Grid: tl_db[iz · n_ranges + ir]; irregular: one per receiver pair.
   // +inf where no beam reaches (shadow); NaN at range 0 (no value).
   std::vector<double> tl_db;
+  // With RunOptions::keep_pressure, in tl_db's order: the coherent field p
+  // (spec §0 convention, TL = −20 log10 |p|); incoherent and semi-coherent
+  // runs: √intensity, real. 0 where tl_db has no value. Else empty.
+  std::vector<std::complex<double>> pressure;
   std::uint32_t beam_count = 0;  // the count used (automatic if the input gave 0)
 };
 

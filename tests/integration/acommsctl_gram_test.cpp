@@ -1,6 +1,9 @@
 // `acommsctl gram` end to end (offline, no daemon): the CLI prints what the
-// library computes, draws a PNG, and refuses bad input with exit status 1
-// (unreadable or refused file) or 2 (bad usage).
+// library computes, draws a PNG, writes a .shd the project's reader reads
+// back, and refuses bad input with exit status 1 (unreadable or refused
+// file) or 2 (bad usage).
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -9,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "child_process.h"
+#include "gram/shd_file.h"
 
 namespace {
 
@@ -51,6 +55,102 @@ TEST(AcommsctlGram, TlPrintsOneCsvRowPerReceiverAndReportsTheAutomaticBeamCount)
   EXPECT_EQ(out.at(0), "range_m,depth_m,tl_db");
   EXPECT_EQ(out.size(), 1u + 100u * 99u);  // 100 depths × 99 ranges
   EXPECT_NE(r.err.find("500 beams (automatic"), std::string::npos) << r.err;
+}
+
+// A Lloyd-mirror field of 201 depths × 200 ranges: enough rows (40,200) for
+// acommsctl to split the formatting across threads.
+std::string lloyd_field_env(const std::string& prefix) {
+  const std::string path = prefix + ".env";
+  std::ofstream(path) << "'Lloyd mirror, 201 x 200'\n500\n1\n'CVW'\n0 0.0 1000\n0 1500 /\n1000 1500 /\n"
+                         "'A' 0.0\n1000 1500 0 1 0 0.0 /\n1\n50 /\n201\n0 200 /\n200\n0.025 5 /\n'CG'\n0\n"
+                         "-89 89 /\n0 1001 5.1\n";
+  return path;
+}
+
+struct CsvRow {
+  double range_m, depth_m;
+  std::string tl;
+};
+
+std::vector<CsvRow> csv_rows(const std::string& text) {
+  std::vector<CsvRow> rows;
+  const auto lines = lines_of(text);
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    char* end = nullptr;
+    CsvRow row;
+    row.range_m = std::strtod(lines[i].c_str(), &end);
+    EXPECT_EQ(*end, ',') << lines[i];
+    row.depth_m = std::strtod(end + 1, &end);
+    EXPECT_EQ(*end, ',') << lines[i];
+    row.tl = end + 1;
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST(AcommsctlGram, TlCsvIsTheSameBytesOnOneTwoAndThreeThreads) {
+  const std::string env = lloyd_field_env(prefix());
+  const auto one = run(ACOMMSCTL_BINARY, {"gram", "tl", "--env", env, "--threads", "1"}, prefix() + "_1");
+  const auto two = run(ACOMMSCTL_BINARY, {"gram", "tl", "--env", env, "--threads", "2"}, prefix() + "_2");
+  const auto three = run(ACOMMSCTL_BINARY, {"gram", "tl", "--env", env, "--threads", "3"}, prefix() + "_3");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_EQ(lines_of(one.out).size(), 1u + 201u * 200u);
+  EXPECT_TRUE(two.out == one.out) << "2 threads differ from 1";
+  EXPECT_TRUE(three.out == one.out) << "3 threads differ from 1";
+}
+
+TEST(AcommsctlGram, TlCsvPrintsRangesAndDepthsExactly) {
+  const auto r = run(ACOMMSCTL_BINARY, {"gram", "tl", "--env", lloyd_field_env(prefix())}, prefix());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("e+"), std::string::npos) << "a coordinate printed in exponent form";
+  const auto rows = csv_rows(r.out);
+  ASSERT_EQ(rows.size(), 201u * 200u);
+  // Depth-major: row 200 · 150 + 55 is depth 150 m, range 25 + 55 · 25 m.
+  EXPECT_NEAR(rows[200 * 150 + 55].depth_m, 150.0, 1e-9);
+  EXPECT_NEAR(rows[200 * 150 + 55].range_m, 1400.0, 1e-9);
+  EXPECT_NEAR(rows[200 * 150 + 199].range_m, 5000.0, 1e-9);
+}
+
+TEST(AcommsctlGram, TlShdReadsBackAsTheCsvsCoordinatesAndValues) {
+  const std::string env = lloyd_field_env(prefix());
+  const auto csv = run(ACOMMSCTL_BINARY, {"gram", "tl", "--env", env}, prefix() + "_csv");
+  const auto shd = run(ACOMMSCTL_BINARY, {"gram", "tl", "--env", env, "--format", "shd"}, prefix() + "_shd");
+  ASSERT_EQ(shd.exit_code, 0) << shd.err;
+  const auto field = acomms::gram::read_shd(shd.out, "acommsctl.shd");
+  EXPECT_EQ(field.layout, acomms::gram::ShdLayout::k2023);
+  EXPECT_EQ(field.freq, std::vector<double>{500.0});
+  EXPECT_EQ(field.source_depth_m, std::vector<float>{50.0f});
+  const auto rows = csv_rows(csv.out);
+  const std::size_t nr = field.receiver_range_m.size();
+  ASSERT_EQ(nr, 200u);
+  ASSERT_EQ(field.receiver_depth_m.size(), 201u);
+  ASSERT_EQ(field.pressure.size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    ASSERT_EQ(field.receiver_range_m[i % nr], rows[i].range_m) << "row " << i;  // float64 and exact text
+    ASSERT_EQ(field.receiver_depth_m[i / nr], static_cast<float>(rows[i].depth_m)) << "row " << i;
+    const double magnitude = std::abs(std::complex<double>(field.pressure[i]));
+    if (rows[i].tl == "inf") {
+      EXPECT_EQ(magnitude, 0.0) << "row " << i;
+      continue;
+    }
+    // The CSV's TL has three decimals; the file's float32 adds 1e-5 dB.
+    ASSERT_NEAR(-20.0 * std::log10(magnitude), std::stod(rows[i].tl), 0.0005 + 1e-4) << "row " << i;
+  }
+}
+
+TEST(AcommsctlGram, TlShdRefusesAnIrregularGridAndAPngBesideIt) {
+  const std::string env = prefix() + ".env";
+  std::ofstream(env) << "'irregular'\n500\n1\n'CVW'\n0 0.0 1000\n0 1500 /\n1000 1500 /\n"
+                        "'A' 0.0\n1000 1500 0 1 0 0.0 /\n1\n50 /\n2\n20 40 /\n2\n1 2 /\n'CG RI'\n0\n"
+                        "-89 89 /\n0 1001 2.1\n";
+  const auto r = run(ACOMMSCTL_BINARY, {"gram", "tl", "--env", env, "--format", "shd"}, prefix());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--format shd: a .shd is written for a rectilinear receiver grid only"), std::string::npos)
+      << r.err;
+  const auto both = run(ACOMMSCTL_BINARY, {"gram", "tl", "--env", env, "--format", "shd", "--png", prefix() + ".png"},
+                        prefix() + "_both");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(both.err.find("excludes"), std::string::npos) << both.err;
 }
 
 TEST(AcommsctlGram, TlDrawsAPng) {
