@@ -95,7 +95,9 @@ std::vector<std::string> tl_csv_blocks(const TransmissionLoss& tl, unsigned thre
   auto format_block = [&](std::size_t b) {
     format_rows(tl, text_of, rows * b / blocks, rows * (b + 1) / blocks, out[b]);
   };
-  std::vector<std::thread> helpers;
+  // jthread: if a helper cannot be started, the ones already running are
+  // joined as the error leaves, instead of std::terminate.
+  std::vector<std::jthread> helpers;
   for (std::size_t b = 1; b < blocks; ++b) helpers.emplace_back(format_block, b);
   format_block(0);
   for (auto& t : helpers) t.join();
