@@ -1,5 +1,5 @@
-# How the build stays short on CI's two cores (measured: docs in the README's
-# "Building" section). Two means, each applied from one place so that no test
+# How the build stays short on CI's two cores (figures: the README's
+# "Building by hand"). Two means, each applied from one place so that no test
 # folder has to remember it:
 #
 # - Test code is compiled at -O1 (acomms_test_optimisation). Tests spend their

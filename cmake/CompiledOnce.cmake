@@ -1,7 +1,8 @@
 # Header-only libraries, each compiled once. Debian ships spdlog and Asio as
 # headers (spdlog's shared object aside, which a static binary cannot use);
 # included as they are, each unit that logs or runs an event loop compiles
-# their whole implementation again: about half of the build's time. So every
+# their whole implementation again (spdlog alone: about 6 s of a unit's 9-15 s
+# at -O3, in 48 units of the main tree and 17 of the fuzzing tree). So every
 # user gets the libraries' "compiled separately" switch, and one unit each in
 # cmake/compiled/ holds the implementation. spdlog's Debian build expects an
 # external fmt, used header-only (it costs little per unit).

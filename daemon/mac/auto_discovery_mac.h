@@ -76,6 +76,9 @@ class AutoDiscoveryMac final : public Mac {
   void stop() override;
   // Always throws std::invalid_argument (see above).
   void set_cycle(const Cycle& cycle) override;
+  std::string cycle_not_settable_reason() const override {
+    return "the \"auto_discovery\" MAC builds its cycle from the nodes it hears; it cannot be set";
+  }
   // The cycle in progress, or the last one (before the first cycle: this
   // node and the blank). The blank slot has src 0.
   const Cycle& cycle() const override { return cycle_; }

@@ -63,6 +63,10 @@ class Mac {
   // By default the nodes with a slot in cycle() and no blank rule; a MAC
   // that learns the network says what it learned.
   virtual MacStatus status() const;
+  // Empty when an operator may replace the cycle (SetCycle); otherwise why
+  // not, in words for that operator. Constant for a MAC's life, so any
+  // thread may ask.
+  virtual std::string cycle_not_settable_reason() const { return {}; }
 };
 
 }  // namespace acomms::mac

@@ -15,6 +15,10 @@ class SilentMac final : public Mac {
   void set_cycle(const Cycle& cycle) override { cycle_ = cycle; }
   const Cycle& cycle() const override { return cycle_; }
   void on_receive(const v1::ModemTransmission&) override {}
+  std::string cycle_not_settable_reason() const override {
+    return "this node's MAC is \"none\": it never starts a transmission, so it has no cycle to change "
+           "(configure mac.name \"fixed\" or \"polled\")";
+  }
 
  private:
   Cycle cycle_;

@@ -60,21 +60,14 @@ grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatu
 
 grpc::Status AcommsService::SetCycle(grpc::ServerContext*, const v1::SetCycleRequest* request,
                                      v1::SetCycleResponse* response) {
-  const std::string& name = identity_.mac;
-  if (name.empty() || name == "none") {
-    return {grpc::StatusCode::FAILED_PRECONDITION,
-            "this node's MAC is \"none\": it never starts a transmission, so it has no cycle to change "
-            "(configure mac.name \"fixed\" or \"polled\")"};
-  }
-  if (name == "auto_discovery") {
-    return {grpc::StatusCode::FAILED_PRECONDITION,
-            "the \"auto_discovery\" MAC builds its cycle from the nodes it hears; it cannot be set"};
+  // The MAC says whether its cycle can be set: the service names no MAC.
+  if (std::string refusal = node_.link.mac.cycle_not_settable_reason(); !refusal.empty()) {
+    return {grpc::StatusCode::FAILED_PRECONDITION, refusal};
   }
   if (request->slot_size() > 1000) {
     return {grpc::StatusCode::INVALID_ARGUMENT, "a cycle has at most 1000 slots"};
   }
   v1::MacConfig config;
-  config.set_name(name);
   *config.mutable_slot() = request->slot();
   mac::Cycle cycle = mac::cycle_from_config(config);
   try {

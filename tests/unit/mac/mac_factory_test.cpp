@@ -79,6 +79,21 @@ TEST(MacFactory, EachMacReportsItsOwnStatusThroughTheInterface) {
   discovery->stop();
 }
 
+// SetCycle asks the MAC whether its cycle can be replaced, never its name:
+// a configured cycle can; "none" (nothing to slot) and auto-discovery (the
+// cycle is what it learned) say why not, naming themselves.
+TEST(MacFactory, EachMacSaysWhetherAnOperatorMaySetItsCycle) {
+  core::SimulatedScheduler scheduler(day_s(0));
+  auto reason = [&](const std::string& text) { return make_mac(parse(text), 1, scheduler)->cycle_not_settable_reason(); };
+  const std::string slots = "slot { src: 1 seconds: 10 }";
+  EXPECT_EQ(reason("name: 'fixed' " + slots), "");
+  EXPECT_EQ(reason("name: 'polled' " + slots), "");
+  EXPECT_NE(reason("name: 'none'").find("MAC is \"none\""), std::string::npos) << reason("name: 'none'");
+  EXPECT_NE(reason("").find("MAC is \"none\""), std::string::npos);
+  const std::string discovery = reason("name: 'auto_discovery' slot_seconds: 15 coolness: 4 expire_cycles: 5");
+  EXPECT_NE(discovery.find("\"auto_discovery\" MAC builds its cycle"), std::string::npos) << discovery;
+}
+
 TEST(MacFactory, BuildsEachKind) {
   core::SimulatedScheduler scheduler(day_s(0));
   const std::string slots = "slot { src: 1 seconds: 10 } slot { src: 2 dest: 1 rate: 3 seconds: 5 }";
