@@ -18,37 +18,11 @@
 #include <string>
 #include <vector>
 
-#include "gram/bellhop_import.h"
 #include "gram/depth_objective.h"
 #include "gram/transmission_loss.h"
-
-namespace {
+#include "pekeris_depth_case.h"
 
 using namespace acomms::gram;
-
-Environment pekeris_window() {
-  Environment env =
-      import_bellhop_env_file(std::string(ACOMMS_SHARED_DIR) + "/conformance/gram/envs/pekeris_500hz.env").environment;
-  env.clear_receiver_range_m();
-  for (int i = 0; i <= 20; ++i) env.add_receiver_range_m(1900 + 25.0 * i);
-  env.set_beam_count(600);
-  env.set_box_range_m(2500);
-  return env;
-}
-
-DepthObjectiveRequest vehicle_request() {
-  DepthObjectiveRequest req;
-  req.range_m = 2000;
-  req.speed_mps = 1.5;
-  req.heading_deg = 0;
-  req.horizon_s = 120;
-  req.h_max_db = 70;
-  req.limits = {5, 90, 10};
-  req.lowpass = LowpassOptions{};
-  return req;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   int repeat = 5;
@@ -60,8 +34,9 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const Environment env = pekeris_window();  // the file is parsed once, outside the timing
-  const DepthObjectiveRequest req = vehicle_request();
+  // The file is parsed once, outside the timing.
+  const Environment env = test::pekeris_depth_case_environment(ACOMMS_SHARED_DIR);
+  const DepthObjectiveRequest req = test::pekeris_depth_case_request();
   std::vector<double> seconds;
   bool answered = true;
   for (int i = 0; i < repeat; ++i) {

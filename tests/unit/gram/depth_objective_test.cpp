@@ -19,6 +19,7 @@
 #include "gram/range_window.h"
 #include "gram/sonar_equation.h"
 #include "gram/transmission_loss.h"
+#include "pekeris_depth_case.h"
 
 namespace acomms::gram {
 namespace {
@@ -424,22 +425,10 @@ TEST(GramDepthObjectivePipeline, BelowTheCriticalDepthTheNoiseFallsAndTheSignalE
 
 // Its time is measured by tests/bench/depth_objective_bench.cpp.
 TEST(GramDepthObjectiveEndToEnd, ThePekerisModelRunGivesABestDepthInsideTheLimits) {
-  ImportedEnvironment imported = import_bellhop_env_file(
-      std::string(ACOMMS_SHARED_DIR) + "/conformance/gram/envs/pekeris_500hz.env");
-  Environment env = imported.environment;
-  env.clear_receiver_range_m();
-  for (int i = 0; i <= 20; ++i) env.add_receiver_range_m(1900 + 25.0 * i);  // 1.9–2.4 km
-  env.set_beam_count(600);
-  env.set_box_range_m(2500);
+  // The case is stated once (tests/support/pekeris_depth_case.h), with the bench.
+  const Environment env = test::pekeris_depth_case_environment(ACOMMS_SHARED_DIR);
   const std::vector<TransmissionLoss> tl{compute_transmission_loss(env)};
-  DepthObjectiveRequest req;
-  req.range_m = 2000;
-  req.speed_mps = 1.5;
-  req.heading_deg = 0;
-  req.horizon_s = 120;
-  req.h_max_db = 70;
-  req.limits = {5, 90, 10};
-  req.lowpass = LowpassOptions{};
+  const DepthObjectiveRequest req = test::pekeris_depth_case_request();
   const DepthObjectiveResult r = compute_depth_objective(tl, env, req);
   EXPECT_EQ(r.ranges_in_window, 8u);
   EXPECT_EQ(r.depth_m.size(), 25u);
