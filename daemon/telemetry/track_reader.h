@@ -30,7 +30,7 @@ class TrackReader {
   TrackPage track(int32_t src, double since_s, size_t limit);
   // Positions numbered in the received sequence (ReceivedPosition::seq)
   // after `after`, from `src` (unset: any), in seq order, at most `limit`:
-  // Subscribe's replay. Positions stored before migration 0009 have no
+  // Subscribe's replay. Positions stored before migration 0010 have no
   // number and are not among them.
   std::vector<ReceivedPosition> positions_after(int64_t after, std::optional<int32_t> src, size_t limit);
 
