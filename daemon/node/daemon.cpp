@@ -196,11 +196,14 @@ void Daemon::build_telemetry(const telemetry::StoredStreams& /*stored*/) {
   auto publish = [this, own_id](const std::vector<telemetry::ReceivedPosition>& positions) {
     for (const telemetry::ReceivedPosition& p : positions) {
       subscribers_.publish(
-          service::to_received_message(service::to_position(p, telemetry_settings_), own_id, clock_.now_seconds()));
+          service::to_received_message(service::to_position(p, telemetry_settings_), own_id, p.received_s, p.seq));
     }
   };
   telemetry_ = std::make_unique<telemetry::TelemetryNode>(telemetry_settings_, own_id, *codec_, *writer_,
                                                            &node_position_, submit, publish);
+  // Positions take their numbers from the received sequence, so Subscribe's
+  // `after` replays them among received messages.
+  telemetry_->number_positions_with([queues = queues_.get()] { return queues->take_received_seq(); });
   track_ = std::make_unique<telemetry::TrackReader>(store_->db().path());
 }
 

@@ -115,6 +115,11 @@ void QueueManager::emit(TypeState& state, double now, const Change& change) {
   if (!change.already_journaled) journal_.record(event);
 }
 
+int64_t QueueManager::take_received_seq() {
+  ACOMMS_ASSERT_CORE_THREAD();
+  return ++last_received_seq_;
+}
+
 void QueueManager::restore() {
   double now = clock_.now_seconds();
   size_t restored = 0;

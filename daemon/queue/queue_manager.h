@@ -135,6 +135,13 @@ class QueueManager {
   // The received sequence number given to the last message received (0:
   // none yet); continues across restarts from the journal.
   int64_t last_received_seq() const { return last_received_seq_; }
+  // Hands out the next received sequence number for something received
+  // that is not a queue message: telemetry's reconstructed Positions, which
+  // Subscribe replays by `after` like every received message. The taker
+  // makes the number durable (event_sequence, migration 0005) in the commit
+  // that stores what it numbers. Core thread only (numbers follow the order
+  // things are passed on).
+  int64_t take_received_seq();
 
  private:
   // The steps of a submit, run in order on their threads by

@@ -109,6 +109,9 @@ class AcommsService final : public v1::Acomms::WithCallbackMethod_Submit<v1::Aco
   // A Submit's ttl_s and message, parsed.
   grpc::Status parse_submitted(const v1::SubmitRequest& request,
                                std::unique_ptr<google::protobuf::Message>* out) const;
+  // A stored telemetry position as Subscribe's replay sends it: as it was
+  // published live.
+  v1::ReceivedMessage from_track(const telemetry::ReceivedPosition& position) const;
 
   DaemonIdentity identity_;
   Node node_;

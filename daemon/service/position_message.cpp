@@ -21,7 +21,8 @@ telemetry::Position to_position(const telemetry::ReceivedPosition& p, const tele
   return out;
 }
 
-v1::ReceivedMessage to_received_message(const telemetry::Position& position, int32_t own_id, double now) {
+v1::ReceivedMessage to_received_message(const telemetry::Position& position, int32_t own_id, double now,
+                                        int64_t seq) {
   v1::ReceivedMessage out;
   out.set_type(kPositionType);
   out.set_payload(position.SerializeAsString());
@@ -29,6 +30,7 @@ v1::ReceivedMessage to_received_message(const telemetry::Position& position, int
   out.set_src(position.src());
   out.set_dest(own_id);
   out.set_receive_time(now);
+  out.set_seq(seq);
   return out;
 }
 

@@ -18,9 +18,10 @@ inline constexpr const char* kPositionType = "acomms.telemetry.Position";
 telemetry::Position to_position(const telemetry::ReceivedPosition& position, const telemetry::NodeSettings& settings);
 
 // Type kPositionType, from position.src to `own_id`, received at `now`
-// (stored, that is; the sample's own time is in the payload); seq 0: not a
-// received message of the event log (Subscribe's `after` does not replay
-// positions; Track does).
-v1::ReceivedMessage to_received_message(const telemetry::Position& position, int32_t own_id, double now);
+// (reconstructed, that is; the sample's own time is in the payload), with
+// the position's number in the received sequence (ReceivedPosition::seq;
+// Subscribe's `after` replays positions by it).
+v1::ReceivedMessage to_received_message(const telemetry::Position& position, int32_t own_id, double now,
+                                        int64_t seq);
 
 }  // namespace acomms::service

@@ -14,16 +14,22 @@
 //  3. Replay ends when a read finds nothing newer; `cursor` is then the
 //     last seq written. Live messages with seq <= cursor were replayed
 //     already and are skipped; the rest are newer, in order.
+//  4. Telemetry's Positions are numbered in the same sequence (they are
+//     stored in telemetry_position, committed and published like received
+//     messages: telemetry/telemetry_node.h), so replay merges the two
+//     tables in seq order.
 // INVARIANT: the seqs written to one stream strictly increase (leaving out
-// seq 0: driver-specific receptions and telemetry's Positions, which are
-// not in the event log).
+// seq 0: driver-specific receptions, which are not stored).
 #include <spdlog/spdlog.h>
 
 #include <google/protobuf/descriptor.h>
 
+#include <algorithm>
+
 #include "dccl/message_json.h"
 #include "service/acomms_service.h"
 #include "service/position_message.h"
+#include "service/replay_merge.h"
 #include "telemetry/wire_message.h"
 #include "service/rpc_status.h"
 
@@ -67,7 +73,17 @@ bool is_driver_specific_type(const std::string& type) {
          google::protobuf::DescriptorPool::generated_pool()->FindMessageTypeByName(type) != nullptr;
 }
 
+bool filter_has_position(const std::vector<std::string>& types) {
+  return std::find(types.begin(), types.end(), kPositionType) != types.end();
+}
+
 }  // namespace
+
+// A stored position as it was published live (daemon: node/daemon.cpp).
+v1::ReceivedMessage AcommsService::from_track(const telemetry::ReceivedPosition& position) const {
+  return to_received_message(to_position(position, node_.telemetry.settings()),
+                             static_cast<int32_t>(identity_.modem_id), position.received_s, position.seq);
+}
 
 grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::SubscribeRequest* request,
                                       grpc::ServerWriter<v1::ReceivedMessage>* writer) {
@@ -109,15 +125,25 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
   grpc::Status result = grpc::Status::OK;
   bool gone = false;
   if (request->has_after()) {
+    const bool wants_positions = types.empty() || filter_has_position(types);
     for (;;) {
       std::vector<queue::StoredReceived> page = node_.events.received_after(cursor, types, src, kReplayPage);
-      if (page.empty() || context->IsCancelled()) break;
+      std::vector<telemetry::ReceivedPosition> positions;
+      if (wants_positions) positions = node_.track.positions_after(cursor, src, kReplayPage);
+      if ((page.empty() && positions.empty()) || context->IsCancelled()) break;
+      std::vector<int64_t> message_seqs, position_seqs;
+      for (const queue::StoredReceived& stored : page) message_seqs.push_back(stored.seq);
+      for (const telemetry::ReceivedPosition& position : positions) position_seqs.push_back(position.seq);
       std::vector<v1::ReceivedMessage> messages;
       {
         // Decoded under the lock, written without it: a slow client must
         // not hold up loading definitions.
         auto stable = node_.submitter.types_stable();
-        for (const queue::StoredReceived& stored : page) messages.push_back(from_store(stored, node_.codec));
+        for (const ReplayPick& pick : merge_replay_pages(message_seqs, page.size() == kReplayPage, position_seqs,
+                                                         positions.size() == kReplayPage)) {
+          messages.push_back(pick.position ? from_track(positions[pick.index])
+                                           : from_store(page[pick.index], node_.codec));
+        }
       }
       for (const v1::ReceivedMessage& message : messages) {
         // Telemetry's own messages are never published live (their content
@@ -138,8 +164,8 @@ grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::Su
   while (!gone && !context->IsCancelled()) {
     if (std::optional<v1::ReceivedMessage> message = subscription->next(kPollCancel)) {
       // seq 0: not a message of the event log (a driver-specific reception,
-      // link/driver_specific.h, or a telemetry Position), never replayed,
-      // so never at the seam; it does not move the cursor.
+      // link/driver_specific.h), never replayed, so never at the seam; it
+      // does not move the cursor.
       if (message->seq() != 0 && message->seq() <= cursor) continue;  // replayed already (seam step 3)
       if (!writer->Write(*message)) break;  // the client went away
       if (message->seq() != 0) cursor = message->seq();

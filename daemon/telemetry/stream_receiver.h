@@ -59,6 +59,11 @@ struct ReceivedPosition {
   int64_t time_s = 0;  // seconds since the Unix epoch
   std::array<double, kAxes> position_m{};
   bool full = false;
+  // Set by the telemetry node when it stores the position: its number in
+  // the node's received sequence (0: none) and when it was reconstructed
+  // (seconds since the Unix epoch).
+  int64_t seq = 0;
+  double received_s = 0;
 };
 
 struct ReceiverCounters {

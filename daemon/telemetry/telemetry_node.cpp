@@ -234,6 +234,10 @@ void TelemetryNode::on_received(const queue::ReceivedMessage& message) {
 void TelemetryNode::consume(const WireMessage& message, int64_t event_seq, double now) {
   StreamReceiver& receiver = receiver_for(message.src);
   std::vector<ReceivedPosition> positions = receiver.receive(message, now);
+  for (ReceivedPosition& p : positions) {
+    p.received_s = now;
+    if (next_seq_) p.seq = next_seq_();
+  }
   last_event_seq_ = std::max(last_event_seq_, event_seq);
   // Queued before the state is posted: a kill between the two consumes the
   // message again at restart and asks again (at worst one extra request).
@@ -246,13 +250,32 @@ void TelemetryNode::consume(const WireMessage& message, int64_t event_seq, doubl
         save.step();
         save.reset();
         store::Statement& insert = writer_.prepared(
-            "INSERT OR REPLACE INTO telemetry_position (src, time, x, y, z, full) VALUES (?, ?, ?, ?, ?, ?)");
+            "INSERT OR REPLACE INTO telemetry_position (src, time, x, y, z, full, seq, received) "
+            "VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+        int64_t last_position_seq = 0;
         for (const ReceivedPosition& p : positions) {
           insert.bind(1, int64_t{p.src}).bind_double(2, static_cast<double>(p.time_s));
           insert.bind_double(3, p.position_m[0]).bind_double(4, p.position_m[1]).bind_double(5, p.position_m[2]);
           insert.bind(6, int64_t{p.full ? 1 : 0});
+          if (p.seq != 0) {
+            insert.bind(7, p.seq);
+          } else {
+            insert.bind_null(7);
+          }
+          insert.bind_double(8, p.received_s);
           insert.step();
           insert.reset();
+          last_position_seq = std::max(last_position_seq, p.seq);
+        }
+        if (last_position_seq != 0) {
+          // The numbers are the received sequence's (migration 0005): made
+          // durable here, with the positions, so a restart never hands one
+          // out again.
+          store::Statement& advance =
+              writer_.prepared("UPDATE event_sequence SET last = MAX(last, ?) WHERE name = 'received'");
+          advance.bind(1, last_position_seq);
+          advance.step();
+          advance.reset();
         }
         store::Statement& progress =
             writer_.prepared("UPDATE telemetry_progress SET last_seq = max(last_seq, ?) WHERE name = 'received'");

@@ -88,6 +88,14 @@ class TelemetryNode {
   TelemetryNode(NodeSettings settings, int32_t own_id, const dccl::Codec& codec, store::GroupCommitWriter& writer,
                 core::NodePosition* position, Submit submit, Publish publish);
 
+  // Numbers each reconstructed position from the node's received sequence
+  // (queue::QueueManager::take_received_seq), so that Subscribe's `after`
+  // replays Positions in their place among received messages. Without it
+  // (tests of the streams alone) positions carry seq 0. Core thread, before
+  // restore().
+  using NextSeq = std::function<int64_t()>;
+  void number_positions_with(NextSeq next_seq) { next_seq_ = std::move(next_seq); }
+
   // Before the writer starts on `db`.
   static StoredStreams read_state(store::Database& db);
   // Brings the streams back (senders continue after what `queues` still
@@ -127,6 +135,7 @@ class TelemetryNode {
   core::NodePosition* position_;
   Submit submit_;
   Publish publish_;
+  NextSeq next_seq_;
   Sampler sampler_;
   std::map<int32_t, StreamSender> senders_;
   std::map<int32_t, StreamReceiver> receivers_;

@@ -1,12 +1,13 @@
 #pragma once
 // Reads the positions a receiver reconstructed (telemetry_position) for the
-// Track API, on its own read-only connection: WAL lets it read while the
+// Track API and for Subscribe's replay, on its own read-only connection: WAL lets it read while the
 // store writer appends, so `acommsctl track` never delays the link.
 //
 // Thread-safe (one connection under a mutex).
 
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ class TrackReader {
 
   // Positions from `src` with time >= since_s, oldest first, at most limit.
   TrackPage track(int32_t src, double since_s, size_t limit);
+  // Positions numbered in the received sequence (ReceivedPosition::seq)
+  // after `after`, from `src` (unset: any), in seq order, at most `limit`:
+  // Subscribe's replay. Positions stored before migration 0010 have no
+  // number and are not among them.
+  std::vector<ReceivedPosition> positions_after(int64_t after, std::optional<int32_t> src, size_t limit);
 
  private:
   std::mutex mutex_;

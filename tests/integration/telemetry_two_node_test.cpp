@@ -11,14 +11,21 @@
 // every sample, in order, each exactly the vehicle's position on the 1 m
 // grid, with at most one full transmission besides the first per restart;
 // subscribers saw the positions as acomms.telemetry.Position.
+// Positions are numbered in the topside's received sequence: `acommsctl sub
+// --resume FILE`, stopped and started again across the phases and cut off
+// by the topside's kill, prints every position once; Subscribe `after: N`
+// replays them.
 #include <gtest/gtest.h>
 #include <signal.h>
 
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <regex>
+#include <set>
 #include <sstream>
 
+#include "child_process.h"
 #include "daemon_harness.h"
 #include "sim_network.h"
 #include "stream_subscriber.h"
@@ -131,11 +138,38 @@ class TelemetryTwoNode : public ::testing::Test {
     return wait_until([&] { return track().positions_size() >= positions; }, timeout, 200ms);
   }
 
+  // `acommsctl sub acomms.telemetry.Position --resume FILE` on the topside.
+  std::unique_ptr<ChildProcess> start_position_sub(int n) {
+    return std::make_unique<ChildProcess>(
+        ACOMMSCTL_BINARY,
+        std::vector<std::string>{"--socket", net_.socket(2), "sub", "acomms.telemetry.Position", "--resume",
+                                 (net_.dir() / "sub.cursor").string()},
+        (net_.dir() / ("sub" + std::to_string(n))).string());
+  }
+
   SimNetwork net_{"telemetry", kSlotSeconds};
   double t0_ = 0;
 };
 
+// (seq, sample time) of each line `acommsctl sub` printed.
+std::vector<std::pair<int64_t, double>> printed_positions(const std::string& out) {
+  static const std::regex time_field("\"time\":([-0-9.eE+]+)");
+  static const std::regex seq_field("\"seq\":([0-9]+)\\}$");
+  std::vector<std::pair<int64_t, double>> got;
+  for (const std::string& line : lines_of(out)) {
+    std::smatch time, seq;
+    if (!std::regex_search(line, time, time_field) || !std::regex_search(line, seq, seq_field)) {
+      ADD_FAILURE() << "not a Position line: " << line;
+      continue;
+    }
+    got.emplace_back(std::stoll(seq[1]), std::stod(time[1]));
+  }
+  return got;
+}
+
 TEST_F(TelemetryTwoNode, TrackIsCompleteInOrderAndExactThroughLossAndKillsOfEachEnd) {
+  std::vector<std::unique_ptr<ChildProcess>> subs;
+  subs.push_back(start_position_sub(1));
   {
     StreamSubscriber positions(net_.socket(2), "acomms.telemetry.Position");
     // 1. A minute through acommsctl nav.
@@ -151,14 +185,22 @@ TEST_F(TelemetryTwoNode, TrackIsCompleteInOrderAndExactThroughLossAndKillsOfEach
     EXPECT_EQ(p.x(), std::round(track_at(0).x));
     EXPECT_TRUE(p.full());
   }
+  // The first reader stops (SIGTERM: a clean end) with the stream in flight.
+  ASSERT_TRUE(wait_until([&] { return !subs[0]->stdout_text().empty(); }, 30s, 100ms)) << subs[0]->stderr_text();
+  subs[0]->signal(SIGTERM);
+  EXPECT_EQ(subs[0]->wait(10s), 0) << subs[0]->stderr_text();
   // 2. SIGKILL the vehicle with its stream in flight.
   RecordProperty("positions_at_vehicle_kill", track().positions_size());
   kill9_and_restart(1);
   feed_with_api(kMinute + 1, 2 * kMinute);
   ASSERT_TRUE(wait_for_track(kMinute + 20, 90s)) << net_.daemon(1).stderr_text();
+  // A second reader resumes; the topside's kill below ends its stream.
+  subs.push_back(start_position_sub(2));
+  ASSERT_TRUE(wait_until([&] { return !subs[1]->stdout_text().empty(); }, 30s, 100ms)) << subs[1]->stderr_text();
   // 3. SIGKILL the topside with the stream in flight.
   RecordProperty("positions_at_topside_kill", track().positions_size());
   kill9_and_restart(2);
+  EXPECT_TRUE(subs[1]->wait(10s).has_value()) << "the reader outlived its daemon";
   feed_with_api(2 * kMinute + 1, 3 * kMinute);
   const int all = 3 * kMinute + 1;
   ASSERT_TRUE(wait_for_track(all, 120s)) << "topside has " << track().positions_size() << " of " << all << "\n"
@@ -190,6 +232,48 @@ TEST_F(TelemetryTwoNode, TrackIsCompleteInOrderAndExactThroughLossAndKillsOfEach
   std::vector<std::string> lines = lines_of(csv.out);
   ASSERT_EQ(lines.size(), static_cast<size_t>(all + 1));
   EXPECT_EQ(lines[0], "time,x,y,z,lat,lon,depth,full");
+
+  // The third reader resumes after the second's last line: the three
+  // printed every position once, in increasing seq.
+  subs.push_back(start_position_sub(3));
+  auto printed = [&] {
+    std::vector<std::pair<int64_t, double>> all_lines;
+    for (const auto& sub : subs) {
+      for (const auto& line : printed_positions(sub->stdout_text())) all_lines.push_back(line);
+    }
+    return all_lines;
+  };
+  ASSERT_TRUE(wait_until([&] { return printed().size() >= static_cast<size_t>(all); }, 30s, 200ms))
+      << printed().size() << " of " << all << " printed\n"
+      << subs[2]->stderr_text();
+  subs[2]->signal(SIGTERM);
+  EXPECT_EQ(subs[2]->wait(10s), 0) << subs[2]->stderr_text();
+  const std::vector<std::pair<int64_t, double>> lines_printed = printed();
+  ASSERT_EQ(lines_printed.size(), static_cast<size_t>(all));
+  std::set<double> times;
+  for (size_t i = 0; i < lines_printed.size(); ++i) {
+    times.insert(lines_printed[i].second);
+    if (i > 0) EXPECT_GT(lines_printed[i].first, lines_printed[i - 1].first) << i;
+  }
+  EXPECT_EQ(times.size(), static_cast<size_t>(all));
+  EXPECT_EQ(*times.begin(), t0_);
+  EXPECT_EQ(*times.rbegin(), t0_ + all - 1);
+  RecordProperty("position_readers", static_cast<int>(subs.size()));
+
+  // Subscribe `after: N` replays the positions after N, and only them.
+  const int64_t seq_of_100th = lines_printed[99].first;
+  StreamSubscriber replayed(net_.socket(2), "acomms.telemetry.Position", seq_of_100th);
+  ASSERT_TRUE(replayed.wait_for([&](const auto& got) { return got.size() >= static_cast<size_t>(all - 100); }, 20s));
+  const std::vector<v1::ReceivedMessage> got_replayed = replayed.received();
+  ASSERT_EQ(got_replayed.size(), static_cast<size_t>(all - 100));
+  for (size_t i = 0; i < got_replayed.size(); ++i) {
+    EXPECT_EQ(got_replayed[i].seq(), lines_printed[100 + i].first) << i;
+    telemetry::Position p;
+    ASSERT_TRUE(p.ParseFromString(got_replayed[i].payload()));
+    EXPECT_EQ(p.time(), lines_printed[100 + i].second) << i;
+    EXPECT_EQ(got_replayed[i].src(), 1);
+    EXPECT_EQ(got_replayed[i].dest(), 2);
+  }
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <mutex>
+#include <set>
 
 #include "core/clock.h"
 #include "core/event_loop.h"
@@ -21,6 +22,7 @@
 #include "store/group_commit_writer.h"
 #include "store/store.h"
 #include "telemetry/telemetry_node.h"
+#include "telemetry/track_reader.h"
 
 namespace acomms::telemetry {
 namespace {
@@ -63,6 +65,8 @@ class TelemetryNodeTest : public ::testing::Test {
                          std::lock_guard lock(mutex_);
                          published_.insert(published_.end(), positions.begin(), positions.end());
                        });
+    // As the daemon does with the queue's sequence (QueueManager::take_received_seq).
+    if (numbered_) node.number_positions_with([&seq] { return ++seq; });
     node.restore(stored, events, queues);
     for (size_t i = from; i < to; ++i) {
       queue::QueueEvent event;
@@ -121,6 +125,7 @@ class TelemetryNodeTest : public ::testing::Test {
     }
   }
 
+  bool numbered_ = false;
   fs::path dir_;
   dccl::Codec codec_;
   NodeSettings settings_;
@@ -130,6 +135,43 @@ class TelemetryNodeTest : public ::testing::Test {
   std::vector<ReceivedPosition> published_;
   std::vector<std::unique_ptr<google::protobuf::Message>> submitted_;
 };
+
+// Subscribe's `after` replays positions by these numbers (service/subscribe_rpc.cpp).
+TEST_F(TelemetryNodeTest, PositionsAreNumberedInTheReceivedSequenceDurablyAcrossAKill) {
+  numbered_ = true;
+  run(0, 60, 90);    // killed with 30 received events not yet consumed
+  run(90, 150, 150);  // those are consumed at restart, then the rest
+  std::set<int64_t> event_seqs;
+  {
+    store::Store store(dir_.string());
+    store::Statement events = store.db().prepare("SELECT seq FROM event_log WHERE seq IS NOT NULL");
+    while (events.step()) event_seqs.insert(events.column_int64(0));
+    store::Statement last = store.db().prepare("SELECT last FROM event_sequence WHERE name = 'received'");
+    ASSERT_TRUE(last.step());
+    // Numbers handed to positions are durable: a restart continues after them.
+    store::Statement max_position = store.db().prepare("SELECT MAX(seq) FROM telemetry_position");
+    ASSERT_TRUE(max_position.step());
+    EXPECT_EQ(last.column_int64(0), std::max(max_position.column_int64(0), *event_seqs.rbegin()));
+  }
+  ASSERT_EQ(event_seqs.size(), 150u);
+  telemetry::TrackReader reader((dir_ / store::kStoreFileName).string());
+  const std::vector<ReceivedPosition> all = reader.positions_after(0, std::nullopt, 1000);
+  expect_complete(all);
+  for (size_t i = 0; i < all.size(); ++i) {
+    EXPECT_EQ(event_seqs.count(all[i].seq), 0u) << "position " << i << " took event seq " << all[i].seq;
+    EXPECT_EQ(all[i].src, 2);
+    EXPECT_GT(all[i].received_s, 0);
+    if (i > 0) {
+      EXPECT_GT(all[i].seq, all[i - 1].seq) << i;
+    }
+  }
+  // After a number: only what follows it, in order; a page at a time.
+  const std::vector<ReceivedPosition> rest = reader.positions_after(all[99].seq, 2, 20);
+  ASSERT_EQ(rest.size(), 20u);
+  EXPECT_EQ(rest.front().seq, all[100].seq);
+  EXPECT_EQ(rest.back().time_s, all[119].time_s);
+  EXPECT_TRUE(reader.positions_after(all[99].seq, 3, 20).empty()) << "another source's";
+}
 
 TEST_F(TelemetryNodeTest, ReceiverKilledAfterTheEventLogBeforeItsStateLosesNothing) {
   run(0, 40, 47);   // 40..46 logged, never consumed: the kill
