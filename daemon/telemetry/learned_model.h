@@ -32,7 +32,7 @@
 // defaults; tests/unit/telemetry/learned_model_test.cpp shows each): the
 // context 0.3-1.0, the lighter counts 0.1-0.3 (about nothing on a
 // glider), forgetting 0.05-0.9 (most for the fixed-speed observer); all
-// together 0.7-2.2 against the learned model of before, to 7.9-9.0 bits
+// together 0.6-2.2 against the learned model of before, to 7.8-9.0 bits
 // on torpedo AUV tracks and 5.4-6.3 on glider tracks.
 // Integers throughout (means in sixteenths, variances in 1/256 of a
 // precision step squared, the Gaussian tables from deterministic_math.h),
