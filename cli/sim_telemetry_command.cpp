@@ -7,6 +7,7 @@
 
 #include "comma_list.h"
 #include "eval/telemetry_evaluation.h"
+#include "eval/realistic_track.h"
 #include "eval/track_generator.h"
 #include "global_options.h"
 #include "telemetry/sampler.h"
@@ -17,6 +18,7 @@ namespace {
 struct TelemetryOptions {
   std::string track;
   std::string generate;
+  bool realistic = false;
   double duration_s = 4 * 3600;
   std::string observers = "fixed_speed,kalman";
   std::string models = "uniform,gaussian,adaptive,learned";
@@ -28,8 +30,10 @@ struct TelemetryOptions {
 void run(const TelemetryOptions& options, const GlobalOptions& global) {
   if (!options.generate.empty()) {
     const eval::TrackKind kind = eval::track_kind_of(options.generate);
-    std::cout << eval::format_track_csv(eval::generate_track(kind, options.loss.seed, options.duration_s))
-              << std::flush;
+    const std::vector<telemetry::Fix> track =
+        options.realistic ? eval::generate_realistic_track(kind, options.loss.seed, options.duration_s)
+                          : eval::generate_track(kind, options.loss.seed, options.duration_s);
+    std::cout << eval::format_track_csv(track) << std::flush;
     return;
   }
   if (options.track.empty()) throw CLI::ValidationError("--track", "needed (or --generate auv|glider)");
@@ -96,6 +100,11 @@ void add_sim_telemetry_command(CLI::App* sim, const GlobalOptions& global) {
                       "Print a generated track instead (auv: 1.5 m/s lawnmower with yo-yo; glider: "
                       "0.3 m/s sawtooth with currents), seeded by --seed")
       ->check(CLI::IsMember({"auv", "glider"}));
+  command->add_flag("--realistic", options.realistic,
+                    "--generate: a realistic track instead (auv: torpedo AUV on irregular legs, currents, depth "
+                    "changes and yo-yo with overshoot, DVL-aided INS drift and GPS jumps at surfacings, 1 Hz; "
+                    "glider: dead-reckoned sawtooth, currents changing over hours, 4 s); see "
+                    "daemon/eval/realistic_track.h");
   command->add_option("--duration", options.duration_s, "--generate: seconds of track")
       ->check(CLI::Range(60.0, 30 * 86400.0))
       ->capture_default_str();
@@ -135,7 +144,9 @@ void add_sim_telemetry_command(CLI::App* sim, const GlobalOptions& global) {
   command->footer(
       "Examples:\n"
       "  acommsctl sim telemetry --track examples/tracks/auv_lawnmower.csv --observer kalman --model adaptive\n"
-      "  acommsctl sim telemetry --generate glider --duration 86400 --seed 3 > glider.csv");
+      "  acommsctl sim telemetry --generate glider --duration 86400 --seed 3 > glider.csv\n"
+      "  acommsctl sim telemetry --generate auv --realistic --duration 10800 --seed 1 > torpedo.csv\n"
+      "  acommsctl sim telemetry --track torpedo.csv --speed 1.5");
   command->callback([&global] {
     try {
       run(options, global);

@@ -304,7 +304,7 @@ _acommsctl() {
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --track|--generate|--duration|--observer|--model|--tau|--precision|--speed|--sigma-j2|--r|--bounds|--full-every|--loss|--packet-bits|--seed|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --track --generate --duration --observer --model --tau --precision --speed --sigma-j2 --r --bounds --full-every --loss --packet-bits --seed --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --track --generate --realistic --duration --observer --model --tau --precision --speed --sigma-j2 --r --bounds --full-every --loss --packet-bits --seed --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "sim depth-adaptation")
       case "$prev" in
         --png) COMPREPLY=($(compgen -f -- "$cur")); return ;;

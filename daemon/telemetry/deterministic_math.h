@@ -8,6 +8,8 @@
 // (libm versions and vector paths differ in the last bit). So everything the
 // two ends compare is built from the basic operations only (and the library
 // is compiled without FMA contraction, see CMakeLists.txt).
+//
+// Thread-safe: pure functions.
 
 #include <cstdint>
 

@@ -1,5 +1,6 @@
 #include "telemetry/probability_model.h"
 
+#include "telemetry/learned_model.h"
 #include "telemetry/probability_models.h"
 
 namespace acomms::telemetry {

@@ -22,10 +22,10 @@
 //             (eq. 3.26-3.27), the diagonal of P- for the Kalman filter
 //   adaptive  (N_d + 1) / (m + bins) over the m innovations sent since the
 //             fresh start (eq. 3.28-3.29): starts uniform
-//   learned   ours: a Gaussian whose mean and variance are learned from the
-//             innovations sent since the fresh start (starting from the observer's
-//             variance), plus the adaptive counts; see learned_model in
-//             probability_models.cpp
+//   learned   ours (learned_model.h): per axis, in the context of the
+//             previous innovation's class, a Gaussian whose mean and
+//             variance are learned (starting from the observer's) mixed
+//             with counts; each context forgets by halving
 
 #include <cstdint>
 #include <memory>

@@ -8,6 +8,7 @@
 
 #include "telemetry/deterministic_math.h"
 #include "telemetry/gaussian_table.h"
+#include "telemetry/learned_model.h"
 #include "telemetry/probability_models.h"
 
 namespace acomms::telemetry {
@@ -144,8 +145,10 @@ TEST(LearnedModel, StartsAsTheObserversGaussian) {
   for (size_t s = 0; s < a.size(); ++s) EXPECT_EQ(a.frequency(s), b.frequency(s));
 }
 
+// The Gaussian part alone (one context, as the model was before contexts):
+// a learned mean and variance beat counts from a uniform start.
 TEST(LearnedModel, LearnsABiasedNarrowInnovationFasterThanTheAdaptiveCounts) {
-  LearnedModel learned(-50, 51);
+  LearnedModel learned(-50, 51, LearnedModel::before());
   AdaptiveModel adaptive(-50, 51);
   double learned_bits = 0, adaptive_bits = 0;
   const int innovations[] = {2, 3, 2, 2, 3, 1, 2, 3, 2, 2, 2, 3, 2, 1, 2, 2, 3, 2, 2, 2};
@@ -160,6 +163,70 @@ TEST(LearnedModel, LearnsABiasedNarrowInnovationFasterThanTheAdaptiveCounts) {
   const auto& table = learned.table(0, 225);
   EXPECT_GT(table.frequency(learned.symbol_of(2)), table.frequency(learned.symbol_of(0)));
   EXPECT_GT(table.frequency(learned.symbol_of(2)), table.frequency(learned.symbol_of(4)));
+}
+
+
+// The default model spreads the first innovations over contexts (the
+// previous innovation's class), each starting from the observer's
+// Gaussian, so it learns this short run a little slower than one context
+// (0.61 of the adaptive model's bits against 0.55) and wins on tracks
+// (learned_model_test.cpp); still far ahead of the counts.
+TEST(LearnedModel, WithContextsStillLearnsABiasedNarrowInnovationFasterThanTheAdaptiveCounts) {
+  LearnedModel learned(-50, 51);
+  AdaptiveModel adaptive(-50, 51);
+  double learned_bits = 0, adaptive_bits = 0;
+  const int innovations[] = {2, 3, 2, 2, 3, 1, 2, 3, 2, 2, 2, 3, 2, 1, 2, 2, 3, 2, 2, 2};
+  for (int d : innovations) {
+    learned_bits += bits_of(learned.table(0, 225), learned.symbol_of(d));
+    adaptive_bits += bits_of(adaptive.table(0, 225), adaptive.symbol_of(d));
+    learned.observe(0, d);
+    adaptive.observe(0, d);
+  }
+  EXPECT_LT(learned_bits, 0.65 * adaptive_bits) << learned_bits << " vs " << adaptive_bits;
+  const auto& table = learned.table(0, 225);  // the context after a 2
+  EXPECT_GT(table.frequency(learned.symbol_of(2)), table.frequency(learned.symbol_of(0)));
+  EXPECT_GT(table.frequency(learned.symbol_of(2)), table.frequency(learned.symbol_of(4)));
+}
+
+TEST(LearnedModel, ContextIsTheSignedClassOfThePreviousInnovation) {
+  EXPECT_EQ(LearnedModel::context_of(0), 4);
+  EXPECT_EQ(LearnedModel::context_of(1), 5);
+  EXPECT_EQ(LearnedModel::context_of(-1), 3);
+  EXPECT_EQ(LearnedModel::context_of(3), 6);
+  EXPECT_EQ(LearnedModel::context_of(-4), 1);
+  EXPECT_EQ(LearnedModel::context_of(7), 7);
+  EXPECT_EQ(LearnedModel::context_of(8), 8);
+  EXPECT_EQ(LearnedModel::context_of(-50), 0);
+  // A context learns only what followed its class: the +5 went to the
+  // context of 0 (the start), the -1 to that of +5; after the -1, nothing
+  // was seen yet: the observer's Gaussian.
+  LearnedModel model(-50, 51);
+  model.observe(0, 5);
+  model.observe(0, -1);
+  GaussianModel gaussian(-50, 51);
+  const auto& fresh = gaussian.table(0, 225);
+  const auto& after_minus_one = model.table(0, 225);
+  for (size_t s = 0; s < fresh.size(); ++s) EXPECT_EQ(after_minus_one.frequency(s), fresh.frequency(s)) << s;
+  const std::vector<int64_t> statistics = model.statistics();
+  const size_t per_context = 3 + 101;
+  EXPECT_EQ(statistics[1 + 4 * per_context], 1);  // context of 0: one innovation
+  EXPECT_EQ(statistics[1 + 4 * per_context + 3 + 55], 1);  // the +5
+  EXPECT_EQ(statistics[1 + 7 * per_context + 3 + 49], 1);  // context of +5: the -1
+  EXPECT_EQ(statistics[0], -1);  // the previous innovation
+}
+
+// The statistics halve once a context holds context_limit innovations.
+TEST(LearnedModel, HalvesAContextOnceItHoldsTheLimit) {
+  LearnedModel model(-50, 51);
+  for (int i = 0; i < 63; ++i) model.observe(0, 0);  // all in context "0"
+  std::vector<int64_t> s = model.statistics();
+  const size_t zero_context = 1 + 4 * (3 + 101);
+  EXPECT_EQ(s[zero_context], 63);                 // count
+  EXPECT_EQ(s[zero_context + 3 + 50], 63);        // N_0
+  model.observe(0, 0);
+  s = model.statistics();
+  EXPECT_EQ(s[zero_context], 32);
+  EXPECT_EQ(s[zero_context + 3 + 50], 32);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 
+#include "eval/realistic_track.h"
 #include "eval/track_generator.h"
 #include "telemetry/telemetry_decoder.h"
 #include "telemetry/telemetry_encoder.h"
@@ -83,6 +84,30 @@ TEST(RoundTrip, GliderSawtoothWithCurrentsAtHalfMetrePrecision) {
       config.precision_m = 0.5;
       round_trip(samples, config);
       ASSERT_FALSE(HasFailure()) << name_of(observer) << " + " << name_of(model);
+    }
+  }
+}
+
+// The realistic tracks (eval/realistic_track.h): GPS jumps inside a
+// segment, currents, irregular turns, depth overshoot; a 1 Hz and a 4 s log.
+TEST(RoundTrip, EveryObserverAndModelOnRealisticTorpedoAuvAndGliderTracks) {
+  struct Track {
+    eval::TrackKind kind;
+    double speed_mps, duration_s;
+  };
+  for (const Track& track : {Track{eval::TrackKind::kAuv, 1.5, 2.5 * 3600}, Track{eval::TrackKind::kGlider, 0.3, 5 * 3600}}) {
+    const std::vector<Sample> samples = sample_track(eval::generate_realistic_track(track.kind, 11, track.duration_s), 10);
+    ASSERT_GT(samples.size(), 850u);
+    for (ObserverKind observer : {ObserverKind::kFixedSpeed, ObserverKind::kKalman}) {
+      for (ModelKind model : {ModelKind::kUniform, ModelKind::kGaussian, ModelKind::kAdaptive, ModelKind::kLearned}) {
+        TelemetryConfig config;
+        config.observer = observer;
+        config.model = model;
+        config.speed_mps = track.speed_mps;
+        const Cost cost = round_trip(samples, config);
+        ASSERT_FALSE(HasFailure()) << name_of(observer) << " + " << name_of(model);
+        EXPECT_GT(cost.deltas, static_cast<int>(samples.size() * 9 / 10)) << name_of(observer) << " + " << name_of(model);
+      }
     }
   }
 }

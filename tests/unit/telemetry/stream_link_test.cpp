@@ -11,6 +11,7 @@
 #include <random>
 
 #include "dccl/codec.h"
+#include "eval/realistic_track.h"
 #include "eval/track_generator.h"
 #include "telemetry/sampler.h"
 #include "telemetry/stream_receiver.h"
@@ -68,6 +69,32 @@ TEST(StreamLinkTest, InOrderDeliveryReconstructsEverySampleExactly) {
   expect_positions(got, sent, config);
   EXPECT_EQ(receiver.counters().duplicates, 0u);
   EXPECT_EQ(receiver.held(), 0u);
+}
+
+// The realistic tracks (eval/realistic_track.h) through sender and receiver,
+// every observer and model: every position reconstructed on the grid.
+TEST(StreamLinkTest, RealisticTorpedoAuvAndGliderTracksReconstructEverySampleWithinThePrecision) {
+  for (eval::TrackKind kind : {eval::TrackKind::kAuv, eval::TrackKind::kGlider}) {
+    std::vector<Fix> fixes = eval::generate_realistic_track(kind, 12, 3 * 3600);
+    for (Fix& fix : fixes) fix.time_s += kEpoch;
+    for (ObserverKind observer : {ObserverKind::kFixedSpeed, ObserverKind::kKalman}) {
+      for (ModelKind model : {ModelKind::kUniform, ModelKind::kGaussian, ModelKind::kAdaptive, ModelKind::kLearned}) {
+        TelemetryConfig config;
+        config.observer = observer;
+        config.model = model;
+        config.speed_mps = kind == eval::TrackKind::kAuv ? 1.5 : 0.3;
+        StreamSender sender(config, 2, 1);
+        StreamReceiver receiver(config, 2, 1800);
+        const std::vector<Sent> sent = send_all(sender, sample_track(fixes, config.tau_s));
+        ASSERT_GT(sent.size(), 1000u);
+        std::vector<ReceivedPosition> got;
+        for (const Sent& s : sent) append(&got, receiver.receive(s.message, static_cast<double>(s.sample.time_s) + 30));
+        expect_positions(got, sent, config);
+        ASSERT_FALSE(HasFailure()) << name_of(observer) << " + " << name_of(model);
+        EXPECT_EQ(receiver.counters().duplicates, 0u);
+      }
+    }
+  }
 }
 
 // Resends (an ACK lost) and reordering (a lost frame resent after later
