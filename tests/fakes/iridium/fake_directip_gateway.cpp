@@ -73,6 +73,7 @@ struct FakeDirectIpGateway::Impl : std::enable_shared_from_this<Impl> {
   std::vector<MtSubmission> submissions;
   std::optional<int16_t> refuse_next;
   bool hang_next = false;
+  bool garble_next = false;
   uint16_t next_mtmsn = 0;
   uint32_t next_auto_id = 500000;
   std::vector<std::shared_ptr<tcp::socket>> held;  // hanging MT connections
@@ -199,6 +200,12 @@ struct FakeDirectIpGateway::Impl : std::enable_shared_from_this<Impl> {
       submissions.push_back(s);
       held.push_back(socket);
       return "";
+    }
+    if (garble_next) {
+      garble_next = false;
+      s.answered = false;
+      submissions.push_back(s);
+      return std::string("\x01\x00\x05\x44\x00\x02\x00\x00", 8);
     }
     auto& queue = mt[s.imei];
     if (refuse_next) {
@@ -349,6 +356,11 @@ void FakeDirectIpGateway::open_hanging_mo(std::string bytes) {
 void FakeDirectIpGateway::refuse_next_mt(int16_t status) {
   std::lock_guard lock(impl_->mutex);
   impl_->refuse_next = status;
+}
+
+void FakeDirectIpGateway::garble_next_mt_confirmation() {
+  std::lock_guard lock(impl_->mutex);
+  impl_->garble_next = true;
 }
 
 void FakeDirectIpGateway::hang_next_mt() {

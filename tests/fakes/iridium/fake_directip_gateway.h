@@ -24,7 +24,8 @@
 // Faults: set_shore_reachable(false) (no connection is attempted: "no route
 // to the shore"); push_raw_mo (one connection with arbitrary bytes: wrong
 // lengths, oversize, unknown IEIs); open_hanging_mo (sends some bytes and
-// then nothing); refuse_next_mt and hang_next_mt on the MT side.
+// then nothing); refuse_next_mt, hang_next_mt and
+// garble_next_mt_confirmation on the MT side.
 //
 // Thread-safety: every member may be called from any thread; the fake runs
 // its sockets on a thread of its own.
@@ -56,7 +57,7 @@ class FakeDirectIpGateway : public SbdGateway {
     uint16_t flags = 0;
     std::string payload;
     int16_t status = 0;
-    bool answered = true;  // false: held by hang_next_mt (status meaningless)
+    bool answered = true;  // false: hang_next_mt or garble_next_mt_confirmation (status meaningless)
   };
 
   explicit FakeDirectIpGateway(Options options);
@@ -92,6 +93,9 @@ class FakeDirectIpGateway : public SbdGateway {
   void refuse_next_mt(int16_t status);
   // The next MT connection is read and never answered (held open).
   void hang_next_mt();
+  // The next MT is answered with a confirmation IE of 2 bytes, not 25
+  // (a wrong length), and not queued.
+  void garble_next_mt_confirmation();
 
   // The MO bytes for (imei, momsn, payload), as this fake pushes them:
   // header (CDR, IMEI, status 0, MOMSN, MTMSN 0, time) and payload IEs.

@@ -239,6 +239,44 @@ TEST_F(IridiumShoreDriverTest, HangingConnectionIsDroppedWithoutBlockingOthers) 
   EXPECT_EQ(bad("MO read timeout"), 1u);
 }
 
+TEST_F(IridiumShoreDriverTest, ConnectionsBeyondTheBoundWaitTheirTurn) {
+  v1::DriverConfig c = config();
+  c.mutable_iridium_shore()->set_max_mo_connections(1);
+  start(c);
+  gateway_->open_hanging_mo(FakeDirectIpGateway::mo_message(kImei, 3, "abc").substr(0, 5));
+  run_for(std::chrono::milliseconds(100));  // the hanging connection holds the one place
+  gateway_->mo_received(kImei, 4, "after the slow one");
+  // Not served (it waits in the backlog) until the read limit frees the place.
+  ASSERT_TRUE(run_until([&] { return !link_.received.empty(); }));
+  EXPECT_EQ(bad("MO read timeout"), 1u);  // the slow one was dropped first
+  EXPECT_EQ(link_.received[0].frame(0), "after the slow one");
+  EXPECT_TRUE(run_until([&] { return gateway_->hanging_closed_by_shore() == 1; }));
+}
+
+TEST_F(IridiumShoreDriverTest, UnreachableShoreGetsTheMoOnceItIsBack) {
+  start();
+  gateway_->set_shore_reachable(false);
+  gateway_->mo_received(kImei, 8, "kept at the gateway");
+  ASSERT_TRUE(run_until([&] { return gateway_->mo_attempts() >= 2; }));
+  EXPECT_TRUE(link_.received.empty());
+  gateway_->set_shore_reachable(true);
+  ASSERT_TRUE(run_until([&] { return gateway_->mo_delivered() == 1; }));
+  ASSERT_EQ(link_.received.size(), 1u);
+  EXPECT_EQ(link_.received[0].frame(0), "kept at the gateway");
+}
+
+TEST_F(IridiumShoreDriverTest, MalformedMtConfirmationIsCountedAndTheMtResent) {
+  start();
+  gateway_->garble_next_mt_confirmation();
+  link_.queued[kVehicle] = {"garbled"};
+  ASSERT_TRUE(run_until([&] { return !link_.acks.empty(); }));
+  EXPECT_EQ(bad("MT confirmation refused"), 1u);
+  auto submissions = gateway_->mt_submissions();
+  ASSERT_EQ(submissions.size(), 2u);
+  EXPECT_EQ(submissions[0].client_id, submissions[1].client_id);
+  EXPECT_EQ(gateway_->mt_queued(kImei), 1);
+}
+
 TEST_F(IridiumShoreDriverTest, MtQueuedAtTheGatewayIsReportedSentAndAcknowledged) {
   start();
   link_.queued[kVehicle] = {"come home"};
