@@ -87,8 +87,9 @@ class IridiumShoreDriverTest : public ::testing::Test {
     auto* modem = shore->add_modems();
     modem->set_imei(kImei);
     modem->set_modem_id(kVehicle);
-    shore->set_mo_read_timeout_s(0.3);
-    shore->set_mt_confirmation_timeout_s(0.3);
+    // Short enough for a test, long enough for a loaded CI machine.
+    shore->set_mo_read_timeout_s(0.5);
+    shore->set_mt_confirmation_timeout_s(1.0);
     shore->set_mt_check_interval_s(0.05);
     shore->set_mt_retry_min_s(0.2);
     shore->set_mt_refused_wait_s(60);
@@ -102,8 +103,8 @@ class IridiumShoreDriverTest : public ::testing::Test {
   }
   void start() { start(config()); }
 
-  // Runs the loop (and the driver's do_work) until `done` or 3 s.
-  bool run_until(const std::function<bool()>& done, std::chrono::milliseconds timeout = std::chrono::seconds(3)) {
+  // Runs the loop (and the driver's do_work) until `done` or 5 s.
+  bool run_until(const std::function<bool()>& done, std::chrono::milliseconds timeout = std::chrono::seconds(5)) {
     auto deadline = std::chrono::steady_clock::now() + timeout;
     while (!done() && std::chrono::steady_clock::now() < deadline) {
       if (io_.stopped()) io_.restart();
