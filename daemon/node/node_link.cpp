@@ -76,9 +76,10 @@ NodeLink::~NodeLink() {
 void NodeLink::on_depth(double depth_m) {
   if (!depth_) return;
   if (std::optional<bool> enable = depth_->on_depth(depth_m)) {
+    // The controller logs the change; this says why.
     if (controller_->set_enabled(*enable)) {
-      spdlog::info("link {}: {} at depth {:.1f} m (enable_above_depth_m {})", config_.name(),
-                   *enable ? "enabled" : "disabled", depth_m, depth_->threshold_m());
+      spdlog::info("link {}: depth {:.1f} m crossed enable_above_depth_m {}", config_.name(), depth_m,
+                   depth_->threshold_m());
     }
   }
 }
