@@ -41,6 +41,11 @@ std::string slot_text(const v1::MacSlot& slot) {
 
 void print_status(const v1::LinkStatusResponse& link) {
   const v1::DriverStatus& driver = link.driver();
+  // A node with one link in the old form ("default") prints as it always did.
+  if (!link.name().empty() && link.name() != "default") {
+    std::printf("link:         %s, %s%s\n", link.name().c_str(), link.enabled() ? "enabled" : "disabled",
+                link.cost() > 0 ? (", cost " + number_text(link.cost())).c_str() : "");
+  }
   std::printf("modem id:     %u\n", link.modem_id());
   std::printf("driver:       %s, %s (started %llu time(s), %llu failure(s))\n", driver.name().c_str(),
               driver.state().c_str(), static_cast<unsigned long long>(driver.starts()),
@@ -83,13 +88,33 @@ void print_status(const v1::LinkStatusResponse& link) {
   }
 }
 
-void run_status(const GlobalOptions& global) {
+void run_status(const GlobalOptions& global, const std::string& name) {
   ApiClient client(global);
-  v1::LinkStatusResponse response = client.call(&v1::Acomms::Stub::LinkStatus, v1::LinkStatusRequest());
+  v1::LinkStatusRequest request;
+  request.set_link(name);
+  v1::LinkStatusResponse response = client.call(&v1::Acomms::Stub::LinkStatus, request);
+  if (global.json) {
+    print_json(response);
+    return;
+  }
+  // A daemon from before several links fills no `links`.
+  if (response.links_size() == 0) return print_status(response);
+  for (int i = 0; i < response.links_size(); ++i) {
+    if (i > 0) std::printf("\n");
+    print_status(response.links(i));
+  }
+}
+
+void run_enable(const GlobalOptions& global, const std::string& name, bool enabled) {
+  ApiClient client(global);
+  v1::SetLinkEnabledRequest request;
+  request.set_link(name);
+  request.set_enabled(enabled);
+  v1::SetLinkEnabledResponse response = client.call(&v1::Acomms::Stub::SetLinkEnabled, request);
   if (global.json) {
     print_json(response);
   } else {
-    print_status(response);
+    std::printf("link %s %s\n", name.c_str(), response.enabled() ? "enabled" : "disabled");
   }
 }
 
@@ -161,17 +186,38 @@ v1::MacSlot parse_slot(const std::string& text) {
 
 void add_link_command(CLI::App& app, const GlobalOptions& global) {
   static CycleOptions cycle_options;
-  CLI::App* link = app.add_subcommand("link", "The acoustic link: modem driver health and the MAC's TDMA cycle");
+  static std::string status_link;
+  static std::string enable_link;
+  static std::string disable_link;
+  CLI::App* link = app.add_subcommand("link", "The node's links: modem driver health and the MAC's TDMA cycle");
   link->require_subcommand(1);
   link->footer("Example:\n  acommsctl link status");
 
   CLI::App* status = link->add_subcommand("status", "Modem driver state, MAC cycle, known nodes, counters");
+  status->add_option("NAME", status_link, "One link by name (config `link { name: ... }`); default: every link");
   status->footer(
-      "Shows the modem driver (running, or restarting after a failure), the MAC and its cycle of slots, "
-      "the nodes it knows, and link counters (transmissions, acks, messages delivered, duplicates, "
-      "malformed frames, packets lost to half-duplex and to collisions).\n\n"
-      "Example:\n  acommsctl link status --json");
-  status->callback([&global] { run_status(global); });
+      "Shows, for each of the node's links (or the one named), the modem driver (running, or restarting "
+      "after a failure), whether the link is enabled and its cost, the MAC and its cycle of slots, the "
+      "nodes it knows, and link counters (transmissions, acks, messages delivered, duplicates, malformed "
+      "frames, packets lost to half-duplex and to collisions).\n\n"
+      "Examples:\n  acommsctl link status --json\n  acommsctl link status iridium");
+  status->callback([&global] { run_status(global, status_link); });
+
+  CLI::App* enable = link->add_subcommand("enable", "Let a link send again (its MAC and driver start)");
+  enable->add_option("NAME", enable_link, "The link (config `link { name: ... }`)")->required();
+  enable->footer(
+      "Starts the link's driver and MAC again. A link with enable_above_depth_m is also enabled and "
+      "disabled by the vehicle's depth; this command holds until the depth next crosses that threshold.\n\n"
+      "Example:\n  acommsctl link enable iridium");
+  enable->callback([&global] { run_enable(global, enable_link, true); });
+
+  CLI::App* disable = link->add_subcommand("disable", "Stop a link sending (its MAC and driver stop)");
+  disable->add_option("NAME", disable_link, "The link (config `link { name: ... }`)")->required();
+  disable->footer(
+      "Stops the link's MAC and driver: it sends and hears nothing until enabled. Messages awaiting an "
+      "ACK on it may go on the node's other links at once.\n\n"
+      "Example:\n  acommsctl link disable iridium");
+  disable->callback([&global] { run_enable(global, disable_link, false); });
 
   add_link_raw_command(*link, global);
   add_link_extra_commands(*link, global);

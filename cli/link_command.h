@@ -1,6 +1,7 @@
 #pragma once
-// `acommsctl link status|cycle|raw|ping|lbl|mini`: the modem driver, the MAC's
-// slot cycle, the raw link log (link_raw_command.h) and the Micro-Modem's own
+// `acommsctl link status|enable|disable|cycle|raw|ping|lbl|mini`: each of
+// the node's links (its modem driver, enabled or not), the MAC's slot
+// cycle, the raw link log (link_raw_command.h) and the Micro-Modem's own
 // transmissions (link_extra_command.h).
 
 #include <CLI/CLI.hpp>

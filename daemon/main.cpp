@@ -14,6 +14,7 @@
 
 #include "core/config_error.h"
 #include "core/config_loader.h"
+#include "core/node_links.h"
 #include "core/logging.h"
 #include "node/daemon.h"
 #include "link/slot_check.h"
@@ -79,7 +80,7 @@ int main(int argc, char** argv) {
     try {
       acomms::v1::Config checked = acomms::core::load_config_file(check_path);
       // The telemetry section's bounds, as the start would check them.
-      (void)acomms::telemetry::node_settings(checked.telemetry(), static_cast<int32_t>(checked.driver().modem_id()));
+      (void)acomms::telemetry::node_settings(checked.telemetry(), acomms::core::node_id(checked));
       // Slots too short for one frame are a warning: the config still works.
       for (const std::string& warning :
            acomms::link::short_slot_warnings(checked, acomms::link::DriverRegistry::linked())) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/config_error.h"
+#include "core/node_links.h"
 
 namespace acomms::core {
 
@@ -95,20 +96,27 @@ struct Place {
   int column = 0;
 };
 
-// `index` picks the element when the last field is repeated.
+// `index` picks the element of the first repeated field on the path
+// (link.name: the link's); any later repeated field, its first element.
 Place place_of(const pb::TextFormat::ParseInfoTree& tree, const pb::Descriptor* type,
                const std::vector<std::string>& path, int index) {
   const pb::TextFormat::ParseInfoTree* node = &tree;
+  bool index_used = false;
+  auto element = [&](const pb::FieldDescriptor* field) {
+    if (!field->is_repeated()) return -1;
+    int at = index_used ? 0 : index;
+    index_used = true;
+    return at;
+  };
   for (size_t i = 0; i < path.size(); ++i) {
     const pb::FieldDescriptor* field = type->FindFieldByName(path[i]);
     if (field == nullptr || node == nullptr) return {};
     if (i + 1 == path.size()) {
-      pb::TextFormat::ParseLocation loc = node->GetLocation(field, field->is_repeated() ? index : -1);
+      pb::TextFormat::ParseLocation loc = node->GetLocation(field, element(field));
       if (loc.line < 0) return {};
       return {loc.line + 1, loc.column + 1};
     }
-    if (field->is_repeated()) return {};  // no config nests inside a repeated message yet
-    node = node->GetTreeForNested(field, -1);
+    node = node->GetTreeForNested(field, element(field));
     type = field->message_type();
   }
   return {};
@@ -204,6 +212,20 @@ void validate(const v1::Config& config, const pb::TextFormat::ParseInfoTree& tre
     fail({"mac", "name"},
          "\"" + config.mac().name() + "\" is not a MAC name (lowercase letters, digits, '_')");
   }
+  for (int i = 0; i < config.link_size(); ++i) {
+    const v1::LinkConfig& link = config.link(i);
+    if (!link.driver().name().empty() && !valid_plugin_name(link.driver().name())) {
+      fail({"link", "driver", "name"},
+           "\"" + link.driver().name() + "\" is not a driver name (lowercase letters, digits, '_')", i);
+    }
+    if (!link.mac().name().empty() && !valid_plugin_name(link.mac().name())) {
+      fail({"link", "mac", "name"}, "\"" + link.mac().name() + "\" is not a MAC name (lowercase letters, digits, '_')",
+           i);
+    }
+  }
+  if (std::optional<LinkConfigProblem> problem = link_config_problem(config)) {
+    fail(problem->field, problem->problem, problem->index);
+  }
 }
 
 void fill_defaults(v1::Config& config) {
@@ -212,6 +234,17 @@ void fill_defaults(v1::Config& config) {
     config.mutable_grpc()->set_unix_socket(std::string(kDefaultUnixSocket));
   }
   if (config.log_level() == v1::LOG_LEVEL_UNSPECIFIED) config.set_log_level(v1::INFO);
+  if (config.link_size() > 0) {
+    // Several links: each gets the defaults the single form gets, and the
+    // node's one id (core/node_links.h).
+    const int32_t id = node_id(config);
+    for (v1::LinkConfig& link : *config.mutable_link()) {
+      if (link.driver().name().empty()) link.mutable_driver()->set_name(std::string(kDefaultDriver));
+      link.mutable_driver()->set_modem_id(static_cast<uint32_t>(id));
+      if (link.mac().name().empty()) link.mutable_mac()->set_name(std::string(kDefaultMac));
+    }
+    return;
+  }
   if (config.driver().name().empty()) config.mutable_driver()->set_name(std::string(kDefaultDriver));
   if (config.driver().modem_id() == 0) config.mutable_driver()->set_modem_id(1);
   if (config.mac().name().empty()) config.mutable_mac()->set_name(std::string(kDefaultMac));

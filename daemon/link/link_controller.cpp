@@ -45,10 +45,56 @@ LinkController::LinkController(int32_t own_id, queue::QueueManager& queues, mac:
       driver_(driver),
       deliver_(std::move(deliver)),
       options_(options),
-      gate_(options.clock, options.scheduler) {}
+      enabled_(options.enabled),
+      gate_(options.clock, options.scheduler) {
+  if (options_.choice != nullptr) options_.choice->set_enabled(options_.link_index, enabled_);
+}
 
 void LinkController::start() {
   ACOMMS_ASSERT_CORE_THREAD();
+  started_ = true;
+  if (enabled_) run();
+}
+
+void LinkController::stop() {
+  ACOMMS_ASSERT_CORE_THREAD();
+  started_ = false;
+  halt();
+}
+
+bool LinkController::set_enabled(bool enabled) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (enabled == enabled_) return false;
+  enabled_ = enabled;
+  if (options_.choice != nullptr) options_.choice->set_enabled(options_.link_index, enabled);
+  spdlog::info("link {}: {}", options_.choice != nullptr ? options_.choice->link(options_.link_index).name : "",
+               enabled ? "enabled" : "disabled");
+  if (!enabled) {
+    halt();
+    queues_.release_in_flight(options_.link_index);
+  } else if (started_) {
+    run();
+  }
+  return true;
+}
+
+void LinkController::on_driver_state(bool up) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (options_.choice != nullptr) options_.choice->set_driver_up(options_.link_index, up);
+  if (!up) queues_.release_in_flight(options_.link_index);
+}
+
+void LinkController::halt() {
+  if (!running_) return;
+  running_ = false;
+  mac_.stop();
+  gate_.abort("the link stopped");
+  driver_.stop();
+}
+
+void LinkController::run() {
+  if (running_) return;
+  running_ = true;
   DriverCallbacks callbacks;
   callbacks.on_receive = [this](const v1::ModemTransmission& t) { on_receive(t); };
   callbacks.on_data_request = [this](v1::ModemTransmission* t) { on_data_request(t); };
@@ -82,13 +128,6 @@ void LinkController::start() {
   });
 }
 
-void LinkController::stop() {
-  ACOMMS_ASSERT_CORE_THREAD();
-  mac_.stop();
-  gate_.abort("the link stopped");
-  driver_.stop();
-}
-
 void LinkController::request_driver_specific(const v1::ModemTransmission& request, double timeout_s,
                                              DriverSpecificDone done) {
   ACOMMS_ASSERT_CORE_THREAD();
@@ -105,6 +144,12 @@ void LinkController::on_data_request(v1::ModemTransmission* transmission) {
   request.max_frame_bytes = transmission->max_frame_bytes();
   request.max_num_frames = frames_for_slot(*transmission);
   request.ack_requested = transmission->ack_requested();
+  request.link = options_.link_index;
+  if (options_.choice != nullptr) {
+    request.may_carry = [this](const std::string& type, int32_t dest, double priority) {
+      return options_.choice->may_carry(options_.link_index, type, dest, priority, now_s());
+    };
+  }
   if (!in_own_slot_ && gate_.waiting()) {
     // A poll gives this slotless node the channel and an extra waits: the
     // poll is answered with one blank frame (the modem expects an answer)
@@ -164,6 +209,13 @@ uint32_t LinkController::frames_for_slot(const v1::ModemTransmission& transmissi
 void LinkController::on_receive(const v1::ModemTransmission& transmission) {
   ACOMMS_ASSERT_CORE_THREAD();
   mac_.on_receive(transmission);
+  // Any packet from a node says this link reaches it (link_choice.h).
+  const bool from_other = transmission.src() != own_id_ && transmission.src() != queue::kBroadcast;
+  if (options_.choice != nullptr && from_other &&
+      (transmission.type() == v1::ModemTransmission::DATA ||
+       (transmission.type() == v1::ModemTransmission::ACK && transmission.dest() == own_id_))) {
+    options_.choice->reached(options_.link_index, transmission.src(), now_s());
+  }
   if (transmission.type() == v1::ModemTransmission::ACK) {
     if (transmission.dest() != own_id_) return;
     ++stats_.acks_received;

@@ -10,7 +10,15 @@
 // has begun. A request that answers a poll (one the MAC did not start) is
 // dated from the poll's arrival (transmission_rules.h), later than the
 // master's slot start by the poll's travel: the budget takes one more
-// travel guard off what is left.
+// travel guard off what is left. A request with no slot (slot_seconds
+// unset: a satellite modem's driver that holds a session when it decides,
+// under MAC "none") is not budgeted: it gets what the driver asks for.
+//
+// A node with several links has one controller per link, sharing the
+// queues and the node's choice of link (link_choice.h): each asks the
+// queues for what its link may carry, under its own index, and tells the
+// choice when it hears a node. A link can be disabled and enabled at run
+// time (set_enabled): disabled, its MAC and driver are stopped.
 
 #include <cstdint>
 #include <functional>
@@ -24,6 +32,7 @@
 #include "core/clock.h"
 #include "link/driver.h"
 #include "link/driver_specific_gate.h"
+#include "link/link_choice.h"
 #include "link/slot_budget.h"
 #include "mac/mac.h"
 #include "queue/queue_manager.h"
@@ -54,6 +63,13 @@ struct LinkOptions {
   // Given to the driver (DriverCallbacks::after_receipt_durable): software
   // ACKs wait until the queues' received events are committed. Null: at once.
   std::function<void(std::function<void()> then)> after_receipt_durable;
+  // A node with several links: the choice of link they share (outliving the
+  // controller) and this link's index in it; also the queues' link index
+  // (DataRequest::link). Null: one link, which carries everything.
+  LinkChoice* choice = nullptr;
+  int link_index = 0;
+  // Whether start() really starts the link (LinkConfig.enabled).
+  bool enabled = true;
 
   // From the config (mac.max_range_m, unset: kDefaultMaxRangeM) and the
   // core's clock.
@@ -73,6 +89,14 @@ class LinkController {
   void start();
   // Stops the MAC, then the driver.
   void stop();
+  // Enables or disables the link between start() and stop(): disabled,
+  // its MAC and driver are stopped, and what awaited an ACK on it may go
+  // on another link. Idempotent; returns false when it changed nothing.
+  bool set_enabled(bool enabled);
+  bool enabled() const { return enabled_; }
+  // The supervised driver started (up) or failed or stopped (down): what
+  // awaited an ACK on this link may go on another one.
+  void on_driver_state(bool up);
 
   const LinkStats& stats() const { return stats_; }
   // A driver-specific transmission (link/driver_specific.h): checked by the
@@ -85,6 +109,10 @@ class LinkController {
   void set_raw_tap(std::function<void(std::string_view bytes, bool outgoing)> tap) { raw_tap_ = std::move(tap); }
 
  private:
+  // Starts (stops) the driver, then (before) the MAC.
+  void run();
+  void halt();
+  double now_s() const { return options_.clock == nullptr ? 0 : options_.clock->now_seconds(); }
   void on_data_request(v1::ModemTransmission* transmission);
   // max_num_frames capped by what fits in the rest of the slot.
   uint32_t frames_for_slot(const v1::ModemTransmission& transmission);
@@ -101,6 +129,9 @@ class LinkController {
   Deliver deliver_;
   LinkOptions options_;
   bool in_own_slot_ = false;  // the MAC's transmission is being started
+  bool started_ = false;      // between start() and stop()
+  bool enabled_ = true;
+  bool running_ = false;      // started_ and enabled_: driver and MAC run
   // Slot shapes (src, rate, seconds) already warned about as too short.
   std::set<std::tuple<int32_t, int32_t, double>> short_slots_warned_;
   // Queue frame ids of the last DATA transmission to each destination, by

@@ -1,5 +1,7 @@
 #include "link/slot_check.h"
 
+#include "core/node_links.h"
+
 #include <asio/io_context.hpp>
 
 #include <cmath>
@@ -76,16 +78,23 @@ std::vector<std::string> short_slot_warnings(const v1::MacConfig& mac, const Dri
 std::vector<std::string> short_slot_warnings(const v1::Config& config, const DriverRegistry& registry) {
   core::SimulatedScheduler scheduler{core::Clock::time_point{}};
   asio::io_context io_context;
-  std::unique_ptr<Driver> driver;
-  try {
-    // Drivers open their device in start(), not when built.
-    driver = registry.create(config.driver().name(), {config.driver(), scheduler, &io_context});
-  } catch (const std::exception&) {
-    // A bad driver block is the daemon's start-up error to report; the
-    // slots are still checked, with a real modem's timing.
+  const std::vector<v1::LinkConfig> links = core::node_links(config);
+  std::vector<std::string> warnings;
+  for (const v1::LinkConfig& link : links) {
+    std::unique_ptr<Driver> driver;
+    try {
+      // Drivers open their device in start(), not when built.
+      driver = registry.create(link.driver().name(), {link.driver(), scheduler, &io_context});
+    } catch (const std::exception&) {
+      // A bad driver block is the daemon's start-up error to report; the
+      // slots are still checked, with a real modem's timing.
+    }
+    if (!driver) driver = std::make_unique<DefaultTiming>();
+    for (std::string& warning : short_slot_warnings(link.mac(), *driver)) {
+      warnings.push_back(links.size() > 1 ? "link " + link.name() + ": " + warning : std::move(warning));
+    }
   }
-  if (!driver) driver = std::make_unique<DefaultTiming>();
-  return short_slot_warnings(config.mac(), *driver);
+  return warnings;
 }
 
 }  // namespace acomms::link

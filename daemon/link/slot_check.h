@@ -28,9 +28,10 @@ namespace acomms::link {
 // std::invalid_argument for a bad mac.max_range_m.
 std::vector<std::string> short_slot_warnings(const v1::MacConfig& mac, const Driver& driver);
 
-// The same with the config's own driver, built (never started) from
-// `registry` for its timing; when it cannot be built, a real modem's
-// defaults (driver.h) are used.
+// The same for each of the config's links (core/node_links.h) with its own
+// driver, built (never started) from `registry` for its timing; when it
+// cannot be built, a real modem's defaults (driver.h) are used. With
+// several links each line begins "link NAME: ".
 std::vector<std::string> short_slot_warnings(const v1::Config& config, const DriverRegistry& registry);
 
 }  // namespace acomms::link

@@ -5,14 +5,19 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "core/node_links.h"
 #include "core/systemd_notify.h"
-#include "mac/mac_factory.h"
 #include "node/codec_setup.h"
 #include "service/position_message.h"
 
 namespace acomms::node {
 
 Daemon::Daemon(const v1::Config& config) : config_(config) {
+  try {
+    own_id_ = core::node_id(config_);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
   // A start that fails half way (the TCP port is taken, say) must stop what
   // it started, in order: the link on the core thread, then the core. The
   // members' destructors alone would stop the driver from this thread while
@@ -37,7 +42,7 @@ queue::RetentionPolicy retention_policy(const v1::StoreConfig& store) {
 }  // namespace
 
 void Daemon::start() {
-  const auto own_id = static_cast<int32_t>(config_.driver().modem_id());
+  const int32_t own_id = own_id_;
   try {
     telemetry_settings_ = telemetry::node_settings(config_.telemetry(), own_id);
   } catch (const std::invalid_argument& e) {
@@ -62,9 +67,7 @@ void Daemon::start() {
   // Before the queues restore: messages of these types are in the journal.
   DefinitionLoader::load_recorded(*codec_, api_definitions);
   try {
-    queues_ = std::make_unique<queue::QueueManager>(*codec_, config_.queue(),
-                                                    static_cast<int32_t>(config_.driver().modem_id()),
-                                                    clock_, *journal_);
+    queues_ = std::make_unique<queue::QueueManager>(*codec_, config_.queue(), own_id_, clock_, *journal_);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("queue config: ") + e.what());
   }
@@ -75,7 +78,7 @@ void Daemon::start() {
   submitter_ = std::make_unique<queue::Submitter>(
       *queues_, [core = core_.get()](std::function<void()> work) { core->post(std::move(work)); });
   expiry_timer_ = std::make_unique<asio::steady_timer>(core_->context());
-  build_link();
+  build_links();
   build_telemetry(telemetry_stored);
   retention_ = std::make_unique<queue::EventLogRetention>(
       *writer_, *scheduler_, retention_policy(config_.store()), [queues = queues_.get()](double now) {
@@ -88,19 +91,27 @@ void Daemon::start() {
     telemetry_->restore(telemetry_stored, *events_, *queues_);
     schedule_expiry();
     retention_->start();
-    link_->start();  // the supervisor retries a driver that fails to start
+    // Each supervisor retries a driver that fails to start.
+    for (auto& link : links_) link->controller().start();
+    schedule_depth_check();
   });
 
   service::DaemonIdentity identity;
   identity.version = ACOMMS_VERSION;
   identity.data_dir = config_.data_dir();
   identity.schema_version = store_->schema_version();
-  identity.driver = config_.driver().name();
-  identity.mac = config_.mac().name();
-  identity.modem_id = config_.driver().modem_id();
+  // The first link's: what a client written for one link reads.
+  identity.driver = links_.front()->config().driver().name();
+  identity.mac = links_.front()->config().mac().name();
+  identity.modem_id = static_cast<uint32_t>(own_id_);
+  std::vector<service::Link> links;
+  for (auto& link : links_) {
+    links.push_back({link->name(), link->config().driver().name(), link->config().mac().name(),
+                     link->config().cost(), link->mac(), link->driver(), link->controller()});
+  }
   api_ = std::make_unique<service::AcommsService>(
-      std::move(identity), service::Node{*codec_, *queues_, *submitter_, *core_, {*mac_, *driver_, *link_},
-                                         *definitions_, *events_, subscribers_, *telemetry_, *track_});
+      std::move(identity), service::Node{*codec_, *queues_, *submitter_, *core_, std::move(links), *definitions_,
+                                         *events_, subscribers_, *telemetry_, *track_});
 
   gram_api_ = std::make_unique<service::GramService>(*gram_.pool, *gram_.environment,
                                                      save_environment_to(*writer_));
@@ -119,72 +130,61 @@ void Daemon::reload_tls() {
   if (server_) server_->reload_tls();
 }
 
-// Driver, MAC and the LinkController that binds them to the queues (the
-// link's binding). Configuration
-// mistakes (unknown driver, bad cycle) stop the start-up here; device
-// failures later are the supervisor's to retry.
-void Daemon::build_link() {
-  const auto own_id = static_cast<int32_t>(config_.driver().modem_id());
+// Every link (node/node_link.h) and the choice of link they share.
+// Configuration mistakes (unknown driver, bad cycle) stop the start-up here;
+// device failures later are each link's supervisor's to retry.
+void Daemon::build_links() {
   scheduler_ = std::make_unique<core::AsioScheduler>(core_->context(), clock_);
   drivers_ = link::DriverRegistry::linked();  // every driver plugin linked in
-  const std::string& name = config_.driver().name();
-  auto known = drivers_.names();
-  if (std::find(known.begin(), known.end(), name) == known.end()) {
-    std::string list;
-    for (const auto& n : known) list += (list.empty() ? "" : ", ") + n;
-    throw std::runtime_error("driver.name \"" + name + "\" is not a driver (known: " + list + ")");
-  }
-  link::DriverContext context{config_.driver(), *scheduler_, &core_->context(), &node_position_,
-                              gram_.pool.get()};
-  // Built once now so that a bad driver block is a start-up error.
+  std::vector<v1::LinkConfig> configured = core::node_links(config_);
   try {
-    (void)drivers_.create(name, context);
-  } catch (const link::DriverError&) {
-    // The device itself is the supervisor's concern: it retries.
-  } catch (const std::exception& e) {
-    throw std::runtime_error("driver " + name + ": " + e.what());
-  }
-  link::SupervisorOptions options = link::SupervisorOptions::from_config(config_.driver());
-  options.driver_name = name;
-  driver_ = std::make_unique<link::DriverSupervisor>(
-      [this, name] {
-        link::DriverContext context{config_.driver(), *scheduler_, &core_->context(), &node_position_,
-                                    gram_.pool.get()};
-        return drivers_.create(name, context);
-      },
-      *scheduler_, options);
-  try {
-    mac_ = mac::make_mac(config_.mac(), own_id, *scheduler_);
+    choice_ = std::make_unique<link::LinkChoice>(
+        link::LinkChoice::from_config(configured, config_.queue(), clock_.now_seconds()));
   } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(std::string("mac config: ") + e.what());
+    throw std::runtime_error(std::string("queue config: ") + e.what());
   }
-  link_ = std::make_unique<link::LinkController>(
-      own_id, *queues_, *mac_, *driver_,
-      [router = received_.get()](queue::ReceivedMessage message, const v1::ModemTransmission& from) {
-        router->route(message, from);
-      },
-      [this] {
-        link::LinkOptions options = link::LinkOptions::from_config(config_.mac(), scheduler_->clock());
-        options.scheduler = scheduler_.get();  // deadlines of driver-specific requests
-        // Daemon::stop flushes the writer before the core goes, so no
-        // commit callback outlives it.
-        options.after_receipt_durable =
-            queue::durable_receipts(*journal_, [this](queue::Task task) { core_->post(std::move(task)); });
-        return options;
-      }());
-  // The driver's bytes, kept for debugging (link/raw_log.h) when the driver
-  // says they are worth the disk (link/driver_registry.h, DriverTraits).
-  if (const auto& raw_log_bytes = drivers_.traits(name).raw_log_bytes) {
-    raw_log_ = std::make_unique<link::RawLog>(std::filesystem::path(config_.data_dir()) / "link-raw.log",
-                                              raw_log_bytes(config_.driver()), clock_);
-    link_->set_raw_tap([this](std::string_view raw, bool outgoing) { raw_log_->record(raw, outgoing); });
+  link_parts_ = std::make_unique<LinkParts>(LinkParts{
+      .own_id = own_id_,
+      .data_dir = config_.data_dir(),
+      .link_count = static_cast<int>(configured.size()),
+      .scheduler = *scheduler_,
+      .core = *core_,
+      .drivers = drivers_,
+      .node_position = node_position_,
+      .models = gram_.pool.get(),
+      .queues = *queues_,
+      .choice = *choice_,
+      .deliver = [router = received_.get()](queue::ReceivedMessage message,
+                                            const v1::ModemTransmission& from) { router->route(message, from); },
+      // Daemon::stop flushes the writer before the core goes, so no
+      // commit callback outlives it.
+      .after_receipt_durable =
+          queue::durable_receipts(*journal_, [this](queue::Task task) { core_->post(std::move(task)); }),
+  });
+  for (size_t i = 0; i < configured.size(); ++i) {
+    links_.push_back(std::make_unique<NodeLink>(configured[i], static_cast<int>(i), *link_parts_));
   }
+  depth_timer_ = std::make_unique<asio::steady_timer>(core_->context());
+}
+
+// Links enabled by depth follow the newest navigation fix (z up, so depth
+// is -z), looked at once a second: a link's state changes only when the
+// depth crosses its threshold (link/depth_switch.h).
+void Daemon::schedule_depth_check() {
+  depth_timer_->expires_after(std::chrono::seconds(1));
+  depth_timer_->async_wait([this](const std::error_code& error) {
+    if (error) return;
+    if (std::optional<core::NodeFix> fix = node_position_.latest()) {
+      for (auto& link : links_) link->on_depth(-fix->z);
+    }
+    schedule_depth_check();
+  });
 }
 
 // Telemetry sends through the Submit path (durable before queued) and
 // publishes what it reconstructs as acomms.telemetry.Position.
 void Daemon::build_telemetry(const telemetry::StoredStreams& /*stored*/) {
-  const auto own_id = static_cast<int32_t>(config_.driver().modem_id());
+  const int32_t own_id = own_id_;
   auto submit = [this](std::unique_ptr<google::protobuf::Message> message, std::function<void(bool)> done) {
     std::shared_ptr<google::protobuf::Message> owned(std::move(message));
     submitter_->submit(*owned, 0, [this, owned, done = std::move(done)](queue::SubmitResult result) {
@@ -224,7 +224,12 @@ void Daemon::stop() {
   // period (an idle client connection holds it), and nothing should go on
   // the air after the operator asked the daemon to stop. Calls still in
   // flight meanwhile are journaled and go out after the next start.
-  if (core_ && link_) core_->call([this] { link_->stop(); });
+  if (core_ && !links_.empty()) {
+    core_->call([this] {
+      if (depth_timer_) depth_timer_->cancel();
+      for (auto& link : links_) link->controller().stop();
+    });
+  }
   if (core_ && retention_) core_->call([this] { retention_->stop(); });
   // Subscribe streams would otherwise hold the server's shutdown up.
   subscribers_.close();
@@ -242,10 +247,11 @@ void Daemon::stop() {
   }
   gram_api_.reset();
   if (core_) core_->stop();
-  link_.reset();
+  links_.clear();
+  depth_timer_.reset();
+  link_parts_.reset();
+  choice_.reset();
   received_.reset();
-  mac_.reset();
-  driver_.reset();
   // After the driver (the simulator asks the pool for models): waiting
   // requests are answered, running ones cancelled, the workers joined.
   gram_.pool.reset();

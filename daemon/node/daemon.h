@@ -14,11 +14,13 @@
 #include "core/scheduler.h"
 #include "link/driver_registry.h"
 #include "link/driver_supervisor.h"
+#include "link/link_choice.h"
 #include "link/link_controller.h"
 #include "link/raw_log.h"
 #include "mac/mac.h"
 #include "node/definition_loader.h"
 #include "node/gram_setup.h"
+#include "node/node_link.h"
 #include "node/received_message_router.h"
 #include "dccl/codec.h"
 #include "queue/durable_receipts.h"
@@ -58,10 +60,12 @@ class Daemon {
   // The constructor's work, in the order of the file comment.
   void start();
   void schedule_expiry();
-  void build_link();
+  void build_links();
+  void schedule_depth_check();
   void build_telemetry(const telemetry::StoredStreams& stored);
 
   v1::Config config_;
+  int32_t own_id_ = 1;  // the node's modem id on every link (core/node_links.h)
   core::SystemClock clock_;
   std::unique_ptr<store::Store> store_;
   std::unique_ptr<store::GroupCommitWriter> writer_;
@@ -76,17 +80,19 @@ class Daemon {
   // Submit's way into the queues, through the core thread.
   std::unique_ptr<queue::Submitter> submitter_;
   std::unique_ptr<asio::steady_timer> expiry_timer_;
-  // The link, on the core thread: driver (supervised), MAC, and the
-  // LinkController that binds them to the queues.
+  // The links, on the core thread: each its driver (supervised), MAC, and
+  // the LinkController that binds them to the queues (node/node_link.h),
+  // and the choice of link they share (link/link_choice.h).
   std::unique_ptr<core::AsioScheduler> scheduler_;
   link::DriverRegistry drivers_;
-  std::unique_ptr<link::RawLog> raw_log_;  // outlives link_, which writes to it
-  std::unique_ptr<link::DriverSupervisor> driver_;
-  std::unique_ptr<mac::Mac> mac_;
-  // Where the link's received messages go; publishes through its own
+  // Where the links' received messages go; publishes through its own
   // when-stored chain (queue/durable_receipts.h), apart from the ACKs'.
   std::unique_ptr<ReceivedMessageRouter> received_;
-  std::unique_ptr<link::LinkController> link_;
+  std::unique_ptr<link::LinkChoice> choice_;
+  std::unique_ptr<LinkParts> link_parts_;
+  std::vector<std::unique_ptr<NodeLink>> links_;
+  // Applies the navigation input's depth to links enabled by depth.
+  std::unique_ptr<asio::steady_timer> depth_timer_;
   // Prunes the event log on the core thread's schedule, on the writer.
   std::unique_ptr<queue::EventLogRetention> retention_;
   // Position telemetry (core thread): navigation in, streams out, received

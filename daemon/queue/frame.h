@@ -2,6 +2,7 @@
 // What the link asks the queues for, and what they give back.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,17 @@ struct DataRequest {
   uint32_t max_num_frames = 1;
   // Whether this transmission can carry an acknowledgement back.
   bool ack_requested = true;
+  // Which of the node's links asks (its index; 0 when there is one). What
+  // a link's earlier transmission left awaiting an ACK comes back into the
+  // contest at that link's next request, not another's: a message is on
+  // one link at a time, and an ACK that comes late on its link still finds
+  // it (QueueManager::release_in_flight frees a link's messages early).
+  int link = 0;
+  // Whether this link may carry a message of `type` to `dest` now, the
+  // type's priority being `priority` (its P when this request came, before
+  // it won any place): the node's choice of link (link/link_choice.h).
+  // Unset: every message.
+  std::function<bool(const std::string& type, int32_t dest, double priority)> may_carry;
 };
 
 // One modem frame: DCCL messages back to back (they self-delimit, so no

@@ -11,7 +11,9 @@
 // a frame needs no header of its own) and the contest runs again until
 // nothing fits. A frame that asked for an ack keeps its messages in flight
 // until on_ack(); without one, they are back in the next transmission's
-// contest. Core thread only.
+// contest. With several links, "the next transmission" is the next of the
+// same link (DataRequest::link), and a link may carry only what the node's
+// choice of link lets it (DataRequest::may_carry). Core thread only.
 
 #include <spdlog/spdlog.h>
 
@@ -59,12 +61,18 @@ std::vector<QueueManager::Contender> QueueManager::contenders(double now) {
 }
 
 QueueManager::TypeState* QueueManager::contest(std::vector<Contender>& field, double now, size_t room,
-                                               int32_t dest) {
+                                               int32_t dest, const DataRequest& request) {
   for (auto it = field.begin(); it != field.end();) {
     Queue& queue = *it->state->queue;
     const QueuedMessage* next = queue.next_eligible();
     bool takes_part = next != nullptr && !queue.in_blackout(now) && next->encoded.size() <= room &&
                       (dest == kAnyDestination || next->record.dest == dest || next->record.dest == kBroadcast);
+    // The link's cost is held against the type's standing before this
+    // request (priority(now) at its start), not its P after winning a
+    // place: a type worth the link's price fills the transmission.
+    if (takes_part && request.may_carry) {
+      takes_part = request.may_carry(queue.type(), next->record.dest, standing_[it->state]);
+    }
     if (!takes_part) {
       it = field.erase(it);
       continue;
@@ -82,16 +90,14 @@ QueueManager::TypeState* QueueManager::contest(std::vector<Contender>& field, do
 std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
   ACOMMS_ASSERT_CORE_THREAD();
   double now = clock_.now_seconds();
-  // Whatever the last transmission carried and was not acknowledged goes
-  // back into the contest: this is its next opportunity.
-  for (auto& [id, state] : by_id_) {
-    state.queue->release_in_flight([&](const QueuedMessage& m) {
-      emit(state, now, {.kind = QueueEventKind::kRetry, .message = m.record, .frame_id = m.in_flight_frame,
-                        .detail = "not acknowledged"});
-    });
-  }
-  in_flight_.clear();
+  // Whatever this link's last transmission carried and was not
+  // acknowledged goes back into the contest: this is its next opportunity.
+  release_in_flight(request.link);
   expire();
+  standing_.clear();
+  if (request.may_carry) {
+    for (auto& [id, state] : by_id_) standing_[&state] = state.queue->priority(now);
+  }
 
   std::vector<Frame> frames;
   int32_t dest = request.dest;
@@ -99,7 +105,7 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
     Frame frame;
     frame.frame_id = next_frame_id_++;
     std::vector<Contender> field = contenders(now);
-    while (TypeState* winner = contest(field, now, request.max_frame_bytes - frame.bytes.size(), dest)) {
+    while (TypeState* winner = contest(field, now, request.max_frame_bytes - frame.bytes.size(), dest, request)) {
       Queue& queue = *winner->queue;
       const QueuedMessage& next = *queue.next_eligible();
       if (dest == kAnyDestination) dest = next.record.dest;
@@ -112,8 +118,9 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
       emit(*winner, now, {.kind = QueueEventKind::kSent, .message = next.record, .frame_id = frame.frame_id,
                           .detail = awaits_ack ? "awaiting ack" : "", .removes_message = !awaits_ack});
       if (awaits_ack) {
-        auto& types = in_flight_[frame.frame_id];
-        if (types.empty() || types.back() != winner) types.push_back(winner);
+        InFlightFrame& in_flight = in_flight_[frame.frame_id];
+        in_flight.link = request.link;
+        if (in_flight.types.empty() || in_flight.types.back() != winner) in_flight.types.push_back(winner);
       }
       queue.mark_sent(next.record.id, awaits_ack ? frame.frame_id : 0, now);  // `next` is gone after this
     }
@@ -132,7 +139,7 @@ void QueueManager::on_ack(uint64_t frame_id) {
     return;
   }
   double now = clock_.now_seconds();
-  std::set<TypeState*> types(it->second.begin(), it->second.end());
+  std::set<TypeState*> types(it->second.types.begin(), it->second.types.end());
   for (TypeState* state : types) {
     for (const QueuedMessage& m : state->queue->take_acked(frame_id)) {
       emit(*state, now, {.kind = QueueEventKind::kAcked, .message = m.record, .frame_id = frame_id,
@@ -140,6 +147,30 @@ void QueueManager::on_ack(uint64_t frame_id) {
     }
   }
   in_flight_.erase(it);
+}
+
+void QueueManager::release_in_flight(int link) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  std::set<uint64_t> frames;
+  for (auto it = in_flight_.begin(); it != in_flight_.end();) {
+    if (it->second.link != link) {
+      ++it;
+      continue;
+    }
+    frames.insert(it->first);
+    it = in_flight_.erase(it);
+  }
+  if (frames.empty()) return;
+  double now = clock_.now_seconds();
+  // By type in DCCL order, as a single link always released them.
+  for (auto& [id, state] : by_id_) {
+    state.queue->release_in_flight_if([&](uint64_t frame) { return frames.count(frame) > 0; },
+                                      [&](const QueuedMessage& m) {
+                                        emit(state, now, {.kind = QueueEventKind::kRetry, .message = m.record,
+                                                          .frame_id = m.in_flight_frame,
+                                                          .detail = "not acknowledged"});
+                                      });
+  }
 }
 
 }  // namespace acomms::queue

@@ -60,6 +60,22 @@ class Queue {
     }
     in_flight_ids_.clear();
   }
+  // The same for the messages in flight in frames `released_frame` says
+  // yes to.
+  template <typename Pred, typename Fn>
+  void release_in_flight_if(Pred released_frame, Fn released) {
+    std::vector<int64_t> kept;
+    for (int64_t id : in_flight_ids_) {
+      QueuedMessage& m = *find(id);
+      if (!released_frame(m.in_flight_frame)) {
+        kept.push_back(id);
+        continue;
+      }
+      released(static_cast<const QueuedMessage&>(m));
+      m.in_flight_frame = 0;
+    }
+    in_flight_ids_ = std::move(kept);
+  }
   // Removes and returns messages older than their ttl at `now`.
   std::vector<QueuedMessage> take_expired(double now);
   // Removes a message by id (cancel); nullopt if it is not here.

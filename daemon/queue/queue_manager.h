@@ -96,6 +96,11 @@ class QueueManager {
   // The receiver acknowledged `frame_id`: its messages are done.
   void on_ack(uint64_t frame_id);
 
+  // Messages awaiting an ACK on link `link` (DataRequest::link) are back in
+  // the contest now, for any link: that link was disabled or its driver
+  // failed, so its next transmission may be far off.
+  void release_in_flight(int link);
+
   // Splits a received frame into messages and returns those for this node
   // (destination role = own id or broadcast; all when promiscuous).
   // Undecodable bytes end the frame: what came before is kept, the rest is
@@ -183,7 +188,8 @@ class QueueManager {
 
   struct Contender;
   std::vector<Contender> contenders(double now);
-  TypeState* contest(std::vector<Contender>& field, double now, size_t room, int32_t dest);
+  TypeState* contest(std::vector<Contender>& field, double now, size_t room, int32_t dest,
+                     const DataRequest& request);
   // One change of a message's fate, as emit() takes it; callers name the
   // fields they set (designated initializers), the rest keep these values.
   struct Change {
@@ -208,9 +214,17 @@ class QueueManager {
   // Ordered by DCCL id: the contest's last tie-break, and a stable order for tools.
   std::map<int, TypeState> by_id_;
   std::unordered_map<std::string, TypeState*> by_name_;
-  // Frames awaiting an ack: frame id -> the types with messages in it.
-  std::unordered_map<uint64_t, std::vector<TypeState*>> in_flight_;
+  // Frames awaiting an ack: frame id -> the link that sent it and the
+  // types with messages in it.
+  struct InFlightFrame {
+    int link = 0;
+    std::vector<TypeState*> types;
+  };
+  std::unordered_map<uint64_t, InFlightFrame> in_flight_;
   uint64_t next_frame_id_;
+  // Each type's priority when the build_frames running now began: what
+  // the link's cost is held against (DataRequest::may_carry).
+  std::unordered_map<const TypeState*, double> standing_;
   uint64_t malformed_frames_ = 0;
   ReceiveFilter receive_filter_;  // core thread
   int64_t last_received_seq_ = 0;

@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <string>
+#include <vector>
 
 #include "acomms/v1/acomms.grpc.pb.h"
 #include "core/event_loop.h"
@@ -37,10 +38,14 @@ struct DaemonIdentity {
   uint32_t modem_id = 0;
 };
 
-// The acoustic link: the MAC that cycles the slots, the supervised modem
-// driver, and the LinkController that binds them to the queues (what Goby
-// calls a binding). Read and changed on the core thread only.
+// One of the node's links: the MAC that cycles the slots, the supervised
+// modem driver, and the LinkController that binds them to the queues (what
+// Goby calls a binding). Read and changed on the core thread only.
 struct Link {
+  std::string name;  // LinkConfig.name ("default" for the single-link form)
+  std::string driver_name;  // driver.name
+  std::string mac_name;     // mac.name
+  double cost = 0;          // LinkConfig.cost
   mac::Mac& mac;
   link::DriverSupervisor& driver;
   link::LinkController& controller;
@@ -55,7 +60,7 @@ struct Node {
   // types and the set of queues stable while a call reads them.
   queue::Submitter& submitter;
   core::EventLoop& core;
-  Link link;
+  std::vector<Link> links;  // config order; at least one
   Definitions& definitions;  // LoadDefinitions' work (the node's)
   queue::EventLogReader& events;
   SubscriberHub& subscribers;
@@ -92,6 +97,8 @@ class AcommsService final : public v1::Acomms::WithCallbackMethod_Submit<v1::Aco
 
   grpc::Status LinkStatus(grpc::ServerContext*, const v1::LinkStatusRequest*, v1::LinkStatusResponse*) override;
   grpc::Status SetCycle(grpc::ServerContext*, const v1::SetCycleRequest*, v1::SetCycleResponse*) override;
+  grpc::Status SetLinkEnabled(grpc::ServerContext*, const v1::SetLinkEnabledRequest*,
+                              v1::SetLinkEnabledResponse*) override;
   grpc::Status DriverSpecific(grpc::ServerContext*, const v1::DriverSpecificRequest*,
                               v1::DriverSpecificResponse*) override;
 
@@ -106,6 +113,8 @@ class AcommsService final : public v1::Acomms::WithCallbackMethod_Submit<v1::Aco
   // `type`. Caller holds types_stable().
   grpc::Status parse_message(const std::string& type, const std::string* payload, const std::string* json,
                              std::unique_ptr<google::protobuf::Message>* out) const;
+  // The link named `name` ("": the first), or NOT_FOUND naming the links.
+  grpc::Status find_link(const std::string& name, Link** out);
   // A Submit's ttl_s and message, parsed.
   grpc::Status parse_submitted(const v1::SubmitRequest& request,
                                std::unique_ptr<google::protobuf::Message>* out) const;

@@ -43,6 +43,8 @@ grpc::Status AcommsService::DriverSpecific(grpc::ServerContext* context, const v
     return {grpc::StatusCode::INVALID_ARGUMENT,
             "transmission.type must be DRIVER_SPECIFIC (3), with the driver's extension; data goes through Submit"};
   }
+  Link* link = nullptr;
+  if (grpc::Status found = find_link(request->link(), &link); !found.ok()) return found;
   auto now = std::chrono::system_clock::now();
   auto deadline = context->deadline();
   if (deadline > now + kDefaultTimeout) deadline = now + kDefaultTimeout;
@@ -51,8 +53,8 @@ grpc::Status AcommsService::DriverSpecific(grpc::ServerContext* context, const v
 
   auto promise = std::make_shared<std::promise<link::DriverSpecificResult>>();
   std::future<link::DriverSpecificResult> future = promise->get_future();
-  node_.core.post([this, tx, timeout_s, promise] {
-    node_.link.controller.request_driver_specific(tx, timeout_s, [promise](link::DriverSpecificResult result) {
+  node_.core.post([link, tx, timeout_s, promise] {
+    link->controller.request_driver_specific(tx, timeout_s, [promise](link::DriverSpecificResult result) {
       promise->set_value(std::move(result));
     });
   });

@@ -9,6 +9,7 @@
 
 #include <fstream>
 
+#include "mac/silent_mac.h"
 #include "queue/memory_journal.h"
 #include "submit_now.h"
 #include "temp_dir.h"
@@ -284,6 +285,79 @@ TEST_F(LinkControllerTest, StopStopsMacAndDriver) {
   link_->stop();
   EXPECT_TRUE(mac_.stopped);
   EXPECT_TRUE(driver_.stopped);
+}
+
+// A satellite modem's driver holds a session when it decides (MAC "none")
+// and asks for data then: no slot, so no slot budget cuts what it asked.
+TEST_F(LinkControllerTest, ADataRequestTheDriverStartsUnderMacNoneGetsAllItAskedFor) {
+  mac::SilentMac none;
+  FakeDriver modem;
+  LinkController link(1, *queues_, none, modem, [](queue::ReceivedMessage, const v1::ModemTransmission&) {},
+                      options_for(2000));
+  link.start();
+  for (int i = 0; i < 6; ++i) submit("dest: 2 value: " + std::to_string(i));
+  v1::ModemTransmission session;
+  session.set_src(1);
+  session.set_max_frame_bytes(8);
+  session.set_max_num_frames(3);
+  modem.callbacks_.on_data_request(&session);
+  EXPECT_EQ(session.max_num_frames(), 3u);
+  EXPECT_EQ(session.frame_size(), 3);
+  EXPECT_EQ(queues_->stats("lt.Status").sent, 6u) << "two messages in each of three frames";
+  link.stop();
+}
+
+TEST_F(LinkControllerTest, DisabledLinkStopsMacAndDriverAndEnabledStartsThemAgain) {
+  EXPECT_TRUE(link_->set_enabled(false));
+  EXPECT_TRUE(mac_.stopped);
+  EXPECT_TRUE(driver_.stopped);
+  EXPECT_FALSE(link_->enabled());
+  EXPECT_FALSE(link_->set_enabled(false)) << "idempotent";
+  mac_.stopped = driver_.stopped = false;
+  mac_.transmit_ = nullptr;
+  EXPECT_TRUE(link_->set_enabled(true));
+  ASSERT_TRUE(mac_.transmit_) << "the MAC was not started again";
+  submit("dest: 2 value: 1");
+  mac_.slot(1, -1);
+  ASSERT_EQ(driver_.sent.size(), 1u);
+  EXPECT_EQ(driver_.sent[0].frame_size(), 1);
+  EXPECT_EQ(queues_->stats("lt.Status").sent, 1u);
+}
+
+// With a choice of link: the controller offers only what its link may
+// carry, and what it hears tells the choice that a node is reached.
+TEST_F(LinkControllerTest, SendsARoutedMessageOnlyWhileItsLinkIsTheCarrier) {
+  std::vector<v1::LinkConfig> links(2);
+  links[0].set_name("acoustic");
+  links[1].set_name("sat");
+  v1::QueueConfig queue;
+  pb::TextFormat::ParseFromString(
+      R"(type { type: "lt.Status" route { dest: 2 link: "acoustic" link: "sat" fallback_after_s: 60 } })", &queue);
+  LinkChoice choice = LinkChoice::from_config(links, queue, clock_.now_seconds());
+  FakeMac mac;
+  FakeDriver modem;
+  LinkOptions options = options_for(0);
+  options.choice = &choice;
+  options.link_index = 0;
+  LinkController acoustic(1, *queues_, mac, modem, [](queue::ReceivedMessage, const v1::ModemTransmission&) {},
+                          options);
+  acoustic.start();
+  clock_.advance(std::chrono::seconds(61));
+  submit("dest: 2 value: 1");
+  mac.slot(1, -1);
+  ASSERT_EQ(modem.sent.size(), 1u);
+  EXPECT_EQ(modem.sent[0].frame(0), "") << "sent on acoustic after 61 s without hearing node 2";
+  v1::ModemTransmission heard;
+  heard.set_type(v1::ModemTransmission::DATA);
+  heard.set_src(2);
+  heard.set_dest(0);
+  heard.add_frame("");
+  modem.receive(heard);
+  mac.slot(1, -1);
+  ASSERT_EQ(modem.sent.size(), 2u);
+  EXPECT_EQ(modem.sent[1].dest(), 2);
+  EXPECT_NE(modem.sent[1].frame(0), "") << "node 2 heard on acoustic: acoustic carries again";
+  acoustic.stop();
 }
 
 }  // namespace

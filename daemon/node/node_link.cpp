@@ -1,0 +1,87 @@
+#include "node/node_link.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "mac/mac_factory.h"
+
+namespace acomms::node {
+
+NodeLink::NodeLink(const v1::LinkConfig& config, int index, LinkParts& parts) : config_(config) {
+  // Errors name the link when there are several; one link's read as before.
+  const std::string where = parts.link_count > 1 ? "link \"" + config_.name() + "\": " : "";
+  const std::string& name = config_.driver().name();
+  auto known = parts.drivers.names();
+  if (std::find(known.begin(), known.end(), name) == known.end()) {
+    std::string list;
+    for (const auto& n : known) list += (list.empty() ? "" : ", ") + n;
+    throw std::runtime_error(where + "driver.name \"" + name + "\" is not a driver (known: " + list + ")");
+  }
+  const v1::DriverConfig& driver_config = config_.driver();
+  link::DriverContext context{driver_config, parts.scheduler, &parts.core.context(), &parts.node_position,
+                              parts.models};
+  // Built once now so that a bad driver block is a start-up error.
+  try {
+    (void)parts.drivers.create(name, context);
+  } catch (const link::DriverError&) {
+    // The device itself is the supervisor's concern: it retries.
+  } catch (const std::exception& e) {
+    throw std::runtime_error(where + "driver " + name + ": " + e.what());
+  }
+  link::SupervisorOptions options = link::SupervisorOptions::from_config(driver_config);
+  options.driver_name = parts.link_count > 1 ? config_.name() + "/" + name : name;
+  driver_ = std::make_unique<link::DriverSupervisor>(
+      [&parts, &driver_config, name] {
+        link::DriverContext context{driver_config, parts.scheduler, &parts.core.context(), &parts.node_position,
+                                    parts.models};
+        return parts.drivers.create(name, context);
+      },
+      parts.scheduler, options);
+  try {
+    mac_ = mac::make_mac(config_.mac(), parts.own_id, parts.scheduler);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(where + "mac config: " + e.what());
+  }
+  link::LinkOptions link_options = link::LinkOptions::from_config(config_.mac(), parts.scheduler.clock());
+  link_options.scheduler = &parts.scheduler;  // deadlines of driver-specific requests
+  link_options.after_receipt_durable = parts.after_receipt_durable;
+  link_options.choice = &parts.choice;
+  link_options.link_index = index;
+  link_options.enabled = !config_.has_enabled() || config_.enabled();
+  controller_ = std::make_unique<link::LinkController>(parts.own_id, parts.queues, *mac_, *driver_, parts.deliver,
+                                                       link_options);
+  // A failed driver's link carries nothing until it runs again: what waited
+  // for its ACK may go on another link (link_choice.h).
+  driver_->set_status_callback([controller = controller_.get()](const link::DriverStatus& status) {
+    controller->on_driver_state(status.state == link::DriverState::kRunning);
+  });
+  // The driver's bytes, kept for debugging (link/raw_log.h) when the driver
+  // says they are worth the disk (link/driver_registry.h, DriverTraits).
+  if (const auto& raw_log_bytes = parts.drivers.traits(name).raw_log_bytes) {
+    const std::string file = parts.link_count > 1 ? "link-raw-" + config_.name() + ".log" : "link-raw.log";
+    raw_log_ = std::make_unique<link::RawLog>(std::filesystem::path(parts.data_dir) / file,
+                                              raw_log_bytes(driver_config), parts.scheduler.clock());
+    controller_->set_raw_tap([log = raw_log_.get()](std::string_view raw, bool outgoing) { log->record(raw, outgoing); });
+  }
+  if (config_.has_enable_above_depth_m()) depth_.emplace(config_.enable_above_depth_m());
+}
+
+NodeLink::~NodeLink() {
+  // The controller goes first: a supervisor stopping after it must not call it.
+  driver_->set_status_callback(nullptr);
+}
+
+void NodeLink::on_depth(double depth_m) {
+  if (!depth_) return;
+  if (std::optional<bool> enable = depth_->on_depth(depth_m)) {
+    // The controller logs the change; this says why.
+    if (controller_->set_enabled(*enable)) {
+      spdlog::info("link {}: depth {:.1f} m crossed enable_above_depth_m {}", config_.name(), depth_m,
+                   depth_->threshold_m());
+    }
+  }
+}
+
+}  // namespace acomms::node
