@@ -34,10 +34,15 @@ class EventLoop {
   void post(std::function<void()> work) { asio::post(context_, std::move(work)); }
 
   // Runs `work` on the core thread and waits for its result (or exception).
+  // With no core thread running (before start(), after stop()) it runs on
+  // the caller's thread: nothing else can touch core state then
+  // (core_thread.h), and posting it would wait forever for a thread that
+  // does not exist (a daemon whose start fails before the loop starts
+  // stops what it built through call()).
   template <typename Work>
   auto call(Work work) -> std::invoke_result_t<Work> {
     using Result = std::invoke_result_t<Work>;
-    if (on_core_thread()) return work();
+    if (on_core_thread() || !thread_.joinable()) return work();
     std::packaged_task<Result()> task(std::move(work));
     std::future<Result> result = task.get_future();
     asio::post(context_, [&task] { task(); });

@@ -289,6 +289,18 @@ TEST_F(DaemonTest, StartupErrorsExitNonZeroWithTheReason) {
   EXPECT_EQ(missing.exit_code, 1);
   EXPECT_EQ(missing.err, "acommsd: " + nope + ": cannot open config file\n");
 
+  // A driver whose settings it refuses when the daemon builds it (udp with
+  // no listen address): the start stops what it built and exits, naming it.
+  DaemonConfig{.data_dir = dir_ / "data-udp",
+               .unix_socket = socket_,
+               .rest = "driver { name: \"udp\" modem_id: 3 udp { } }\nmac { name: \"none\" }\n"}
+      .write(config_);
+  auto refused = start_daemon("udp-refused");
+  std::optional<int> refused_code = refused->wait(15s);
+  ASSERT_TRUE(refused_code.has_value()) << "acommsd hung after its driver refused its settings";
+  EXPECT_EQ(*refused_code, 1);
+  EXPECT_NE(refused->stderr_text().find("driver udp"), std::string::npos) << refused->stderr_text();
+
   RunResult usage = run(kAcommsd, {"--no-such-option"}, (dir_ / "usage").string());
   EXPECT_EQ(usage.exit_code, 2);
   EXPECT_NE(usage.err.find("--no-such-option"), std::string::npos) << usage.err;

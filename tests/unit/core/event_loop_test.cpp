@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "core/clock.h"
@@ -20,6 +21,16 @@ TEST(EventLoop, CallRunsOnTheCoreThreadAndReturns) {
   EXPECT_FALSE(loop.on_core_thread());
   EXPECT_TRUE(loop.call([&] { return loop.on_core_thread(); }));
   EXPECT_EQ(loop.call([] { return 41 + 1; }), 42);
+}
+
+TEST(EventLoop, CallWithNoCoreThreadRunsOnTheCallersThreadInsteadOfWaitingForever) {
+  EventLoop loop;
+  const std::thread::id caller = std::this_thread::get_id();
+  EXPECT_EQ(loop.call([] { return std::this_thread::get_id(); }), caller) << "before start()";
+  loop.start();
+  EXPECT_NE(loop.call([] { return std::this_thread::get_id(); }), caller);
+  loop.stop();
+  EXPECT_EQ(loop.call([] { return std::this_thread::get_id(); }), caller) << "after stop()";
 }
 
 TEST(EventLoop, CallPropagatesExceptions) {
