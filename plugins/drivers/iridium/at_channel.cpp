@@ -21,7 +21,7 @@ AtChannel::AtChannel(core::Scheduler& scheduler, Write write, Unsolicited unsoli
 AtChannel::~AtChannel() { abort(); }
 
 void AtChannel::send(std::string bytes, std::string echo, Expect expect, Duration timeout, Done done) {
-  abort();
+  cancel();
   ++counters_.commands;
   pending_ = Pending{std::move(echo), expect, std::move(done), {}, 0};
   if (expect == Expect::kBlock) reader_.expect_binary();
@@ -45,10 +45,15 @@ void AtChannel::arm(Duration timeout) {
   });
 }
 
-void AtChannel::abort() {
+void AtChannel::cancel() {
   ++generation_;
   if (pending_ && pending_->timer != 0) scheduler_.cancel(pending_->timer);
+  if (pending_ && pending_->expect == Expect::kBlock) reader_.cancel_binary();
   pending_.reset();
+}
+
+void AtChannel::abort() {
+  cancel();
   reader_.reset();
 }
 

@@ -81,8 +81,11 @@ class AtChannel {
   bool busy() const { return pending_.has_value(); }
   // Bytes from the modem.
   void on_bytes(std::string_view bytes);
-  // Forgets the command in flight without calling its `done`, and any
-  // partial input (the port was lost or the driver stops).
+  // Forgets the command in flight without calling its `done`; input keeps
+  // its place (a line half received is still the modem's).
+  void cancel();
+  // cancel(), and forgets partial input too (the port was lost or the
+  // driver stops: what comes next starts afresh).
   void abort();
 
   // Echoes or numeric codes seen since the last clear_flags().

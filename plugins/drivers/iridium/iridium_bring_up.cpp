@@ -28,7 +28,7 @@ constexpr auto kRecoverSpacing = std::chrono::seconds(2);
 
 void IridiumDriver::begin_init() {
   state_ = State::kInit;
-  channel_.abort();
+  channel_.cancel();
   if (++init_attempts_ > kInitAttempts) {
     fatal_ = "the bring-up failed " + std::to_string(kInitAttempts) + " times in a row";
     return;
@@ -150,7 +150,7 @@ void IridiumDriver::recover(const std::string& why) {
   ++stats_.recoveries;
   spdlog::warn("{}: recovering: {}", label_, why);
   state_ = State::kInit;
-  channel_.abort();
+  channel_.cancel();
   recover_try(0);
 }
 

@@ -16,7 +16,7 @@ using std::chrono::seconds;
 
 TEST(RegisterDriversTest, SimAndUdpByName) {
   link::DriverRegistry registry = link::DriverRegistry::linked();
-  EXPECT_EQ(registry.names(), (std::vector<std::string>{"micromodem", "sim", "udp"}));
+  EXPECT_EQ(registry.names(), (std::vector<std::string>{"iridium", "micromodem", "sim", "udp"}));
 
   core::SimulatedScheduler scheduler(core::Clock::time_point(seconds(1'700'000'000)));
   v1::DriverConfig config;
