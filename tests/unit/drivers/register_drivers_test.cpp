@@ -73,7 +73,7 @@ TEST(RegisterDriversTest, UnknownNameListsTheLinkedDrivers) {
     link::DriverRegistry::linked().create("micromodem9", {config, scheduler});
     FAIL() << "built a driver nobody registered";
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), "no driver \"micromodem9\" (known: micromodem, sim, udp)");
+    EXPECT_EQ(std::string(e.what()), "no driver \"micromodem9\" (known: iridium, micromodem, sim, udp)");
   }
 }
 

@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <asio/io_context.hpp>
+
 #include "iridium/at/sbd_binary.h"
+#include "link/driver_registry.h"
 #include "iridium_test_node.h"
 
 namespace acomms::fake_iridium {
@@ -147,6 +150,44 @@ TEST_F(IridiumDriverTest, AMacRequestIsRefusedWithTheReason) {
   tx.set_src(Vehicle::kId);
   vehicle_->driver->initiate_transmission(tx);
   EXPECT_EQ(vehicle_->sent_failed, 1);
+}
+
+}  // namespace
+}  // namespace acomms::fake_iridium
+
+namespace acomms::fake_iridium {
+namespace {
+
+TEST(IridiumDriverConfigTest, RegistersByNameAndRefusesBadSettingsNamingTheField) {
+  const link::DriverRegistry& registry = link::DriverRegistry::linked();
+  core::SimulatedScheduler scheduler(core::Clock::time_point(std::chrono::seconds(1'700'000'000)));
+  asio::io_context io;
+  v1::DriverConfig config;
+  config.set_name("iridium");
+  config.mutable_iridium()->set_port("tcp:127.0.0.1:1");
+  EXPECT_THROW(registry.create("iridium", {config, scheduler}), std::invalid_argument);  // no event loop
+  auto refusal = [&](const v1::DriverConfig& c) {
+    try {
+      registry.create("iridium", {c, scheduler, &io});
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(refusal(config).find("driver.iridium.shore_id"), std::string::npos) << refusal(config);
+  config.mutable_iridium()->set_shore_id(1);  // modem_id unset means 1: the shore cannot be us
+  EXPECT_NE(refusal(config).find("own modem_id 1"), std::string::npos) << refusal(config);
+  config.set_modem_id(2);
+  config.mutable_iridium()->set_max_mo_bytes(341);
+  EXPECT_NE(refusal(config).find("driver.iridium.max_mo_bytes"), std::string::npos) << refusal(config);
+  config.mutable_iridium()->set_max_mo_bytes(0);
+  config.mutable_iridium()->set_imei("30023401");
+  EXPECT_NE(refusal(config).find("driver.iridium.imei"), std::string::npos) << refusal(config);
+  config.mutable_iridium()->clear_imei();
+  config.mutable_iridium()->clear_port();
+  EXPECT_NE(refusal(config).find("driver.iridium.port"), std::string::npos) << refusal(config);
+  config.mutable_iridium()->set_port("tcp:127.0.0.1:1");
+  EXPECT_EQ(refusal(config), "accepted");
 }
 
 }  // namespace
