@@ -16,7 +16,7 @@ using std::chrono::seconds;
 
 TEST(RegisterDriversTest, SimAndUdpByName) {
   link::DriverRegistry registry = link::DriverRegistry::linked();
-  EXPECT_EQ(registry.names(), (std::vector<std::string>{"iridium_shore", "micromodem", "sim", "udp"}));
+  EXPECT_EQ(registry.names(), (std::vector<std::string>{"iridium", "iridium_shore", "micromodem", "sim", "udp"}));
 
   core::SimulatedScheduler scheduler(core::Clock::time_point(seconds(1'700'000'000)));
   v1::DriverConfig config;
@@ -73,7 +73,7 @@ TEST(RegisterDriversTest, UnknownNameListsTheLinkedDrivers) {
     link::DriverRegistry::linked().create("micromodem9", {config, scheduler});
     FAIL() << "built a driver nobody registered";
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), "no driver \"micromodem9\" (known: iridium_shore, micromodem, sim, udp)");
+    EXPECT_EQ(std::string(e.what()), "no driver \"micromodem9\" (known: iridium, iridium_shore, micromodem, sim, udp)");
   }
 }
 
