@@ -85,4 +85,36 @@ void write_depth_adaptation_png(const std::string& path, const eval::DepthAdapta
   canvas.write(path);
 }
 
+void write_depth_adaptation_sweep_png(const std::string& path, eval::SweepQuantity /*quantity*/,
+                                      const std::vector<eval::SweepPoint>& points) {
+  Canvas canvas;
+  const int left = kMargin, right = kWidth - kMargin, top = kMargin, bottom = kHeight - kMargin;
+  auto y_of = [&](double p) { return bottom - static_cast<int>(std::lround(std::clamp(p, 0.0, 1.0) * (bottom - top))); };
+  for (int q = 0; q <= 4; ++q) canvas.line(left, y_of(q / 4.0), right, y_of(q / 4.0), {225, 225, 225}, 0);
+  canvas.line(left, top, left, bottom, {0, 0, 0}, 0);
+  canvas.line(left, bottom, right, bottom, {0, 0, 0}, 0);
+  if (points.empty()) return canvas.write(path);
+  const double lo = points.front().value, hi = points.back().value;
+  auto x_of = [&](double v) {
+    const double t = hi > lo ? (v - lo) / (hi - lo) : 0.5;
+    return left + 10 + static_cast<int>(std::lround(t * (right - left - 20)));
+  };
+  // The best fixed depth red, adaptive black; each value's ±1 SE as a bar.
+  const Rgb red{200, 30, 30}, black{0, 0, 0};
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const eval::SweepPoint& p = points[i];
+    const int x = x_of(p.value);
+    canvas.line(x + 2, y_of(p.fixed - p.fixed_se), x + 2, y_of(p.fixed + p.fixed_se), red, 0);
+    canvas.line(x - 2, y_of(p.adaptive - p.adaptive_se), x - 2, y_of(p.adaptive + p.adaptive_se), black, 0);
+    canvas.dot(x + 2, y_of(p.fixed), red, 2);
+    canvas.dot(x - 2, y_of(p.adaptive), black, 3);
+    if (i > 0) {
+      const eval::SweepPoint& q = points[i - 1];
+      canvas.line(x_of(q.value) + 2, y_of(q.fixed), x + 2, y_of(p.fixed), red, 0);
+      canvas.line(x_of(q.value) - 2, y_of(q.adaptive), x - 2, y_of(p.adaptive), black, 1);
+    }
+  }
+  canvas.write(path);
+}
+
 }  // namespace acomms::cli

@@ -8,6 +8,7 @@
 
 #include "depth_adaptation_plot.h"
 #include "eval/depth_adaptation.h"
+#include "eval/depth_adaptation_sweep.h"
 #include "global_options.h"
 #include "gram/bellhop_import.h"
 #include "gram/link_physics.h"
@@ -24,6 +25,9 @@ struct DepthAdaptationOptions {
   std::optional<double> band_hz;  // unset: gram::default_band_hz
   std::optional<double> snr50_db;
   double slope_per_db = gram::kDefaultSlopePerDb;
+  double excess_loss_db = 0;
+  std::optional<double> own_ship_noise_db;
+  std::vector<std::string> sweep;  // QUANTITY FROM:TO:STEP
 };
 
 // The evaluation names its config fields; a user of this command typed flags.
@@ -41,7 +45,8 @@ std::string in_flag_words(std::string message) {
       {"shipping", "--shipping"},           {"limits.min_depth_m", "--min-depth"},
       {"limits.max_depth_m", "--max-depth"}, {"limits.min_altitude_m", "--min-altitude"},
       {"min_depth_m", "--min-depth"},       {"max_depth_m", "--max-depth"},
-      {"min_altitude_m", "--min-altitude"}};
+      {"min_altitude_m", "--min-altitude"}, {"excess_loss_db", "--excess-loss"},
+      {"own_ship_noise_db", "--own-ship-noise"}};
   for (const auto& [field, flag] : kFlags) {
     const std::string name = field;
     if (message.rfind(name + " ", 0) == 0) return flag + message.substr(name.size());
@@ -75,6 +80,8 @@ void run(DepthAdaptationOptions& o, const GlobalOptions& global) {
     throw CLI::ValidationError(slope ? "--slope" : "--snr50", *problem);
   }
   config.physics.curves[config.rate] = curve;
+  config.physics.site.excess_loss_db = o.excess_loss_db;
+  config.physics.site.own_ship_noise_db = o.own_ship_noise_db;
 
   std::optional<gram::Environment> model;
   if (!o.model_env.empty()) {
@@ -83,6 +90,23 @@ void run(DepthAdaptationOptions& o, const GlobalOptions& global) {
     } catch (const std::exception& e) {
       throw CLI::ValidationError("--model-env", e.what());
     }
+  }
+  if (!o.sweep.empty()) {
+    eval::SweepQuantity quantity{};
+    eval::SweepRange range;
+    try {
+      quantity = eval::sweep_quantity_from_string(o.sweep.at(0));
+      range = eval::parse_sweep_range(o.sweep.at(1));
+    } catch (const std::invalid_argument& e) {
+      throw CLI::ValidationError("--sweep", e.what());
+    }
+    const std::vector<eval::SweepPoint> points =
+        eval::run_depth_adaptation_sweep(imported.environment, config, model ? &*model : nullptr, quantity, range);
+    if (!o.png.empty()) write_depth_adaptation_sweep_png(o.png, quantity, points);
+    std::cout << (global.json ? eval::format_sweep_json(quantity, points)
+                              : eval::format_sweep_table(quantity, config, points))
+              << std::flush;
+    return;
   }
   const eval::DepthAdaptationResult result =
       eval::run_depth_adaptation(imported.environment, config, model ? &*model : nullptr);
@@ -160,9 +184,19 @@ void add_sim_depth_adaptation_command(CLI::App* sim, const GlobalOptions& global
       ->capture_default_str();
   command->add_option("--snr50", o.snr50_db, "SNR (dB) at which half the packets decode (default: 10 rate 0, 14 PSK)");
   command->add_option("--slope", o.slope_per_db, "Logistic slope of the reception curve, 1/dB")->capture_default_str();
+  command->add_option("--excess-loss", o.excess_loss_db,
+                      "The site's excess loss, dB added to every TL (acommsctl link calibrate measures it)")
+      ->capture_default_str();
+  command->add_option("--own-ship-noise", o.own_ship_noise_db,
+                      "The vehicle's own noise in the band, dB re 1 uPa, added to NL (powers sum)");
+  command->add_option("--sweep", o.sweep,
+                      "Run across a range instead: noise|excess-loss FROM:TO:STEP (dB); prints adaptive against the "
+                      "best fixed depth, each with its standard error, per value")
+      ->expected(2);
   command->footer(
       "Examples:\n"
       "  acommsctl sim depth-adaptation --env examples/glint10.env --png receipt.png\n"
+      "  acommsctl sim depth-adaptation --env examples/glint10.env --sweep noise 100:112:2 --laps 10\n"
       "  acommsctl --json sim depth-adaptation --env examples/glint10.env --depths 10,50,90 --laps 5");
   command->callback([&global] {
     try {

@@ -33,6 +33,13 @@ double depth_step(const gram::Environment& env, const DepthAdaptationConfig& c) 
   return c.depth_step_m > 0 ? c.depth_step_m : gram::default_depth_step_m(bottom_of(env) - surface_of(env));
 }
 
+// What a replay may change without a new model run (depth_adaptation.h).
+void check_physics(const DepthAdaptationConfig& c) {
+  check(gram::require_finite("source_level_db", c.physics.source_level_db));
+  check(gram::require_finite("noise_level_db", c.physics.noise_level_db));
+  check(gram::validate_site_correction(c.physics.site, ""));
+}
+
 void validate(const gram::Environment& env, const DepthAdaptationConfig& c) {
   if (env.sound_speed_size() < 2) throw std::invalid_argument("the environment has no sound speed profile");
   const double top = surface_of(env), bottom = bottom_of(env);
@@ -59,8 +66,7 @@ void validate(const gram::Environment& env, const DepthAdaptationConfig& c) {
   check(require_greater("bin_m", c.bin_m, 0));
   check(require_greater("range_step_m", c.range_step_m, 0));
   check(require_at_least("depth_step_m", c.depth_step_m, 0));
-  check(gram::require_finite("source_level_db", c.physics.source_level_db));
-  check(gram::require_finite("noise_level_db", c.physics.noise_level_db));
+  check_physics(c);
   if (c.laps < 1 || c.laps > 100000) throw std::invalid_argument("laps must be in 1..100000");
   const double duration = 2 * (c.max_range_m - c.start_range_m) / c.speed_mps;
   if (duration / c.send_interval_s > 1e6) throw std::invalid_argument("more than 1e6 packets per lap: raise send_interval_s");
@@ -145,19 +151,35 @@ std::vector<double> adaptive_depths(const gram::TransmissionLoss& tl, const gram
 
 }  // namespace
 
-DepthAdaptationResult run_depth_adaptation(const gram::Environment& file_env, const DepthAdaptationConfig& c,
-                                           const gram::Environment* vehicle_model) {
+DepthAdaptationModel model_depth_adaptation(const gram::Environment& file_env, const DepthAdaptationConfig& c,
+                                            const gram::Environment* vehicle_model) {
   validate(file_env, c);
   if (vehicle_model) validate(*vehicle_model, c);
-  const gram::Environment env = model_environment(file_env, c);
-  const gram::TransmissionLoss tl = gram::compute_transmission_loss(env, {c.threads});
+  DepthAdaptationModel model;
+  model.config = c;
+  model.env = model_environment(file_env, c);
+  model.tl = gram::compute_transmission_loss(model.env, {c.threads});
   // The vehicle decides on its own model when it has one, the water decides.
-  std::optional<gram::Environment> believed;
-  std::optional<gram::TransmissionLoss> believed_tl;
   if (vehicle_model) {
-    believed = model_environment(*vehicle_model, c);
-    believed_tl = gram::compute_transmission_loss(*believed, {c.threads});
+    model.believed = model_environment(*vehicle_model, c);
+    model.believed_tl = gram::compute_transmission_loss(*model.believed, {c.threads});
   }
+  return model;
+}
+
+DepthAdaptationResult run_depth_adaptation(const gram::Environment& file_env, const DepthAdaptationConfig& c,
+                                           const gram::Environment* vehicle_model) {
+  return replay_depth_adaptation(model_depth_adaptation(file_env, c, vehicle_model), c.physics);
+}
+
+DepthAdaptationResult replay_depth_adaptation(const DepthAdaptationModel& model, const gram::LinkPhysics& physics) {
+  DepthAdaptationConfig c = model.config;
+  c.physics = physics;
+  check_physics(c);
+  const gram::Environment& env = model.env;
+  const gram::TransmissionLoss& tl = model.tl;
+  const std::optional<gram::Environment>& believed = model.believed;
+  const std::optional<gram::TransmissionLoss>& believed_tl = model.believed_tl;
 
   DepthAdaptationResult out;
   out.beam_count = tl.beam_count;

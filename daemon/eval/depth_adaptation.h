@@ -39,6 +39,7 @@
 #include "acomms/gram/environment.pb.h"
 #include "gram/best_depth.h"
 #include "gram/link_physics.h"
+#include "gram/transmission_loss.h"
 
 namespace acomms::eval {
 
@@ -104,6 +105,22 @@ struct DepthAdaptationResult {
 // water itself); its grid is built the same way.
 DepthAdaptationResult run_depth_adaptation(const gram::Environment& env, const DepthAdaptationConfig& config,
                                            const gram::Environment* vehicle_model = nullptr);
+
+// The same in two steps, for a caller that replays one geometry under
+// several physics (a sweep of the noise or the excess loss: the packets'
+// fate changes, the model's transmission loss does not). The model holds
+// the config it was made with; a replay takes only the physics from its
+// argument.
+struct DepthAdaptationModel {
+  DepthAdaptationConfig config;
+  gram::Environment env;  // with the experiment's grid
+  gram::TransmissionLoss tl;
+  std::optional<gram::Environment> believed;  // the vehicle's own model, if any
+  std::optional<gram::TransmissionLoss> believed_tl;
+};
+DepthAdaptationModel model_depth_adaptation(const gram::Environment& env, const DepthAdaptationConfig& config,
+                                            const gram::Environment* vehicle_model = nullptr);
+DepthAdaptationResult replay_depth_adaptation(const DepthAdaptationModel& model, const gram::LinkPhysics& physics);
 
 // The per-bin table (one row per strategy) and the verdict, for people.
 std::string format_depth_adaptation_table(const DepthAdaptationConfig& config, const DepthAdaptationResult& result);

@@ -60,11 +60,13 @@ void compute_objective(const DepthObjectiveRequest& request, const Environment& 
   const double nl0 = noise_level_db(s);
   if (s.noise_decrease_db_per_km) out.critical_depth_m = critical_depth(env);
   for (std::size_t i = 0; i < out.depth_m.size(); ++i) {
-    const double nl = noise_level_at_depth(nl0, out.depth_m[i], out.critical_depth_m,
-                                           s.noise_decrease_db_per_km.value_or(0.0));
+    // The ambient level may fall with depth; the vehicle's own noise travels
+    // with it (site_correction.h).
+    const double nl = s.site.total_noise_db(noise_level_at_depth(nl0, out.depth_m[i], out.critical_depth_m,
+                                                                 s.noise_decrease_db_per_km.value_or(0.0)));
     out.noise_level_db.push_back(nl);
     out.signal_excess_db.push_back(
-        signal_excess_db(s.source_level_db, out.h_bar_db[i], nl, s.array_gain_db));
+        signal_excess_db(s.source_level_db, out.h_bar_db[i] + s.site.excess_loss_db, nl, s.array_gain_db));
   }
   out.objective = signal_excess_objective(out.signal_excess_db, s.threshold_db);
 }

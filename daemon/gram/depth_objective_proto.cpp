@@ -39,6 +39,8 @@ DepthObjectiveRequest request_from_proto(const DepthObjectiveQuery& q) {
     o.array_gain_db = s.array_gain_db();
     o.threshold_db = s.threshold_db();
     if (s.has_noise_decrease_db_per_km()) o.noise_decrease_db_per_km = s.noise_decrease_db_per_km();
+    o.site.excess_loss_db = s.excess_loss_db();
+    if (s.has_own_ship_noise_db()) o.site.own_ship_noise_db = s.own_ship_noise_db();
     switch (s.noise_case()) {
       case SonarEquationOptions::kNoiseLevelDb:
         o.noise_level_db = s.noise_level_db();

@@ -41,7 +41,8 @@ LinkOutcome link_outcome(const LinkPhysics& physics, double tl_db, std::int32_t 
   LinkOutcome out;
   out.tl_db = tl_db;
   // A shadow (TL = +inf) leaves no signal at all.
-  out.snr_db = std::isfinite(tl_db) ? signal_excess_db(physics.source_level_db, tl_db, physics.noise_level_db, 0.0)
+  out.snr_db = std::isfinite(tl_db) ? signal_excess_db(physics.source_level_db, tl_db + physics.site.excess_loss_db,
+                                                       physics.site.total_noise_db(physics.noise_level_db), 0.0)
                                     : -INFINITY;
   out.probability = reception_probability(physics.curve(rate), out.snr_db);
   return out;

@@ -1,5 +1,6 @@
 // Whether a packet gets through, from the physics: SNR = SL − TL − NL and a
-// reception curve per rate (spec §6.5 with AG = 0, a single hydrophone).
+// reception curve per rate (spec §6.5 with AG = 0, a single hydrophone),
+// with the site's corrections (site_correction.h) when it has them.
 //
 // Problem: the simulator and the depth-adaptation evaluation must judge
 // packets the same way, from a source level, a noise level and the model's
@@ -15,6 +16,7 @@
 #include <string>
 
 #include "gram/reception_curve.h"
+#include "gram/site_correction.h"
 
 namespace acomms::gram {
 
@@ -45,15 +47,16 @@ double modelled_noise_level_db(const NoiseModelInput& input, const std::string& 
 
 struct LinkPhysics {
   double source_level_db = kDefaultSourceLevelDb;
-  double noise_level_db = 0;                  // NL in the receiver's band
+  double noise_level_db = 0;                  // NL in the receiver's band (ambient)
   std::map<std::int32_t, ReceptionCurve> curves;  // per rate; missing: the default
+  SiteCorrection site;  // excess loss and own-ship noise (site_correction.h)
 
   const ReceptionCurve& curve(std::int32_t rate) const;
 };
 
 struct LinkOutcome {
-  double tl_db = 0;
-  double snr_db = 0;       // SL − TL − NL (−inf in shadow)
+  double tl_db = 0;        // the model's, without the site's excess loss
+  double snr_db = 0;       // SL − (TL + excess) − NL_total (−inf in shadow)
   double probability = 0;  // that the packet decodes
 };
 

@@ -15,6 +15,7 @@ std::optional<std::string> validate_sonar(const SonarOptions& o) {
   if (auto e = require_finite("sonar.source_level_db", o.source_level_db)) return e;
   if (auto e = require_finite("sonar.array_gain_db", o.array_gain_db)) return e;
   if (auto e = require_finite("sonar.threshold_db", o.threshold_db)) return e;
+  if (auto e = validate_site_correction(o.site, "sonar.")) return e;
   if (o.noise_decrease_db_per_km)
     if (auto e =
             require_at_least("sonar.noise_decrease_db_per_km", *o.noise_decrease_db_per_km, 0.0))

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "gram/site_correction.h"
+
 namespace acomms::gram {
 
 // The receiver band and conditions for the noise model.
@@ -37,6 +39,9 @@ struct SonarOptions {
   // environment's profile (noise_depth_profile.h; spec default 3). Unset:
   // NL is the same at every depth.
   std::optional<double> noise_decrease_db_per_km;
+  // The site's excess loss (added to H) and own-ship noise (added to NL at
+  // every depth, powers summed): site_correction.h.
+  SiteCorrection site;
 };
 
 std::optional<std::string> validate_sonar(const SonarOptions& options);

@@ -127,6 +127,51 @@ TEST(DepthAdaptationCli, BadOptionsAreNamedByTheirFlags) {
             std::string::npos);
   EXPECT_NE(error_of({"--sea-state", "9"}, "sea_state").find("--sea-state must be in 0..6, got 9"), std::string::npos);
   EXPECT_NE(error_of({"--min-depth", "-1"}, "min_depth").find("--min-depth"), std::string::npos);
+  EXPECT_NE(error_of({"--excess-loss", "inf"}, "excess").find("--excess-loss = inf must be a finite number"),
+            std::string::npos);
+  EXPECT_NE(error_of({"--sweep", "depth", "1:2:1"}, "sweep_what").find("cannot sweep \"depth\" (known: noise, excess-loss)"),
+            std::string::npos);
+  EXPECT_NE(error_of({"--sweep", "noise", "110:100:2"}, "sweep_range").find("TO must be at least FROM"), std::string::npos);
+}
+
+// "Which case am I in?" on the shipped example: the sweep of the noise from
+// the model's own level (every packet decodes: adapting cannot matter) to
+// past the edge of reception. Each point is the replay at that level: at
+// 106 dB the same figures as the single run above.
+TEST(DepthAdaptationCli, TheSweepOnTheGlint10ExampleShowsWhereTheMarginRunsOut) {
+  const std::string png = ::testing::TempDir() + "glint10_sweep_" + std::to_string(getpid()) + ".png";
+  const auto result = acomms::testing::run(
+      ACOMMSCTL_BINARY,
+      {"--json", "sim", "depth-adaptation", "--env", kGlint10, "--sweep", "noise", "70:114:4", "--png", png},
+      log_prefix("sweep"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  google::protobuf::Struct json;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(result.out, &json).ok()) << result.out;
+  EXPECT_EQ(json.fields().at("quantity").string_value(), "noise_db");
+  const auto& points = json.fields().at("points").list_value().values();
+  ASSERT_EQ(points.size(), 12);
+  double last_adaptive = 1, last_fixed = 1;
+  for (int i = 0; i < points.size(); ++i) {
+    const auto& p = points[i].struct_value().fields();
+    EXPECT_EQ(p.at("value").number_value(), 70 + 4 * i);
+    const double adaptive = p.at("adaptive").number_value(), fixed = p.at("fixed").number_value();
+    EXPECT_LE(adaptive, last_adaptive) << i;
+    EXPECT_LE(fixed, last_fixed) << i;
+    last_adaptive = adaptive;
+    last_fixed = fixed;
+    if (p.at("value").number_value() <= 90) {
+      EXPECT_EQ(adaptive, 1.0) << i;  // all the margin in the world
+      EXPECT_EQ(p.at("margin_se").number_value(), 0.0) << i;
+    }
+    if (p.at("value").number_value() == 106) {
+      EXPECT_NEAR(adaptive, 0.904, 0.002);
+      EXPECT_EQ(p.at("best_fixed").string_value(), "90 m");
+      EXPECT_NEAR(fixed, 0.900, 0.002);
+    }
+  }
+  EXPECT_LT(last_adaptive, 0.8) << "the sweep must reach past the edge of reception";
+  EXPECT_GT(std::filesystem::file_size(png), 1000u);
+  std::filesystem::remove(png);
 }
 
 }  // namespace

@@ -42,6 +42,9 @@ gram::LinkPhysics physics_of(const SimPhysicsConfig& c, double frequency_hz) {
     if (m.has_shipping()) noise.shipping = m.shipping();
     physics.noise_level_db = gram::modelled_noise_level_db(noise, "driver.sim.physics.noise_model.");
   }
+  physics.site.excess_loss_db = c.excess_loss_db();
+  if (c.has_own_ship_noise_db()) physics.site.own_ship_noise_db = c.own_ship_noise_db();
+  if (auto problem = gram::validate_site_correction(physics.site, "driver.sim.physics.")) throw std::invalid_argument(*problem);
   for (int i = 0; i < c.reception_size(); ++i) {
     const SimReceptionCurve& r = c.reception(i);
     const std::string name = "reception[" + std::to_string(i) + "].";

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <deque>
 #include <fstream>
+#include <limits>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -202,6 +203,21 @@ TEST_F(SimPhysicsTest, ReportedSnrIsSourceLevelLessModelledLossLessNoise) {
   EXPECT_NE(buoy.received[1].link_quality().find("snr_db="), std::string::npos);
 }
 
+// The site's corrections (gram/site_correction.h): the receiver's reported
+// SNR is lower by the excess loss and by its own noise, powers summed.
+TEST_F(SimPhysicsTest, ReportedSnrCarriesTheSitesExcessLossAndTheReceiversOwnNoise) {
+  v1::DriverConfig buoy_config = physics_config(1, 0, 30);
+  buoy_config.mutable_sim()->mutable_physics()->set_excess_loss_db(7.5);
+  buoy_config.mutable_sim()->mutable_physics()->set_own_ship_noise_db(kNoise);
+  Node buoy(scheduler_, channel_, buoy_config, pool_.source());
+  Node vehicle(scheduler_, channel_, physics_config(2, 600, 50), pool_.source());
+  pool_.settle();
+  exchange(vehicle, buoy);
+  ASSERT_EQ(buoy.received.size(), 1u);
+  const double tl = gram::tl_at(reference_grid(30), 600, 50);
+  EXPECT_NEAR(buoy.received[0].figures().snr_in_db(), 190 - tl - 7.5 - (kNoise + 10 * std::log10(2.0)), 1e-9);
+}
+
 TEST_F(SimPhysicsTest, TheModelNeverRunsOnTheCoreThreadAndTheLinkRunsOnTheOldGridMeanwhile) {
   Node buoy(scheduler_, channel_, physics_config(1, 0, 30), pool_.source());
   auto nav = std::make_shared<Navigation>();
@@ -322,6 +338,12 @@ TEST_F(SimPhysicsTest, ConfigErrorsNameTheField) {
   c = physics_config(1, 0, 30);
   c.mutable_sim()->mutable_physics()->set_range_step_m(-1);
   expect_error(c, "driver.sim.physics.range_step_m");
+  c = physics_config(1, 0, 30);
+  c.mutable_sim()->mutable_physics()->set_excess_loss_db(std::numeric_limits<double>::infinity());
+  expect_error(c, "driver.sim.physics.excess_loss_db");
+  c = physics_config(1, 0, 30);
+  c.mutable_sim()->mutable_physics()->set_own_ship_noise_db(std::nan(""));
+  expect_error(c, "driver.sim.physics.own_ship_noise_db");
 }
 
 TEST(TlGridSourceTest, TheDaemonsOwnWorkerComputesOffTheLoopAndAnswersOnIt) {

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "eval/depth_adaptation.h"
+#include "eval/depth_adaptation_sweep.h"
 
 namespace acomms::eval {
 namespace {
@@ -145,6 +146,72 @@ TEST(DepthAdaptation, ErrorsNameTheFieldAndTheBound) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("max_range_m"), std::string::npos) << e.what();
   }
+}
+
+// The sweep (depth_adaptation_sweep.h): each point is the replay at that
+// value; receipt falls as the noise rises; an excess loss of e dB over an
+// ambient NL is the same link as NL + e with none (SNR = SL − TL − e − NL).
+TEST(DepthAdaptationSweep, EachPointIsTheReplayAtThatValueAndReceiptFallsWithTheNoise) {
+  DepthAdaptationConfig c = small_config();
+  c.laps = 4;
+  const gram::Environment env = small_thermocline();
+  const std::vector<SweepPoint> points = run_depth_adaptation_sweep(env, c, nullptr, SweepQuantity::kNoise, {120, 136, 8});
+  ASSERT_EQ(points.size(), 3u);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    DepthAdaptationConfig one = c;
+    one.physics.noise_level_db = 120 + 8.0 * i;
+    const DepthAdaptationResult r = run_depth_adaptation(env, one);
+    const StrategyResult& a = r.strategies.back();
+    EXPECT_EQ(points[i].value, 120 + 8.0 * i);
+    EXPECT_EQ(points[i].adaptive, a.receipt_overall()) << i;
+    EXPECT_EQ(points[i].best_fixed, r.strategies[r.best_fixed].name) << i;
+    EXPECT_EQ(points[i].fixed, r.strategies[r.best_fixed].receipt_overall()) << i;
+    EXPECT_NEAR(points[i].adaptive_se, std::sqrt(a.receipt_overall() * (1 - a.receipt_overall()) / a.total_sent), 1e-15);
+    if (i > 0) {
+      EXPECT_LE(points[i].adaptive, points[i - 1].adaptive) << i;
+      EXPECT_LE(points[i].fixed, points[i - 1].fixed) << i;
+    }
+  }
+  EXPECT_LT(points.back().adaptive, points.front().adaptive) << "the range must cross the edge of reception";
+  const double se = std::hypot(points[1].adaptive_se, points[1].fixed_se);
+  if (se > 0) EXPECT_NEAR(points[1].margin_se, (points[1].adaptive - points[1].fixed) / se, 1e-12);
+}
+
+TEST(DepthAdaptationSweep, AnExcessLossIsTheSameLinkAsThatMuchMoreNoise) {
+  DepthAdaptationConfig c = small_config();
+  c.laps = 4;
+  c.physics.noise_level_db = 120;
+  const gram::Environment env = small_thermocline();
+  const auto by_excess = run_depth_adaptation_sweep(env, c, nullptr, SweepQuantity::kExcessLoss, {0, 16, 8});
+  const auto by_noise = run_depth_adaptation_sweep(env, c, nullptr, SweepQuantity::kNoise, {120, 136, 8});
+  ASSERT_EQ(by_excess.size(), by_noise.size());
+  for (std::size_t i = 0; i < by_excess.size(); ++i) {
+    // The same draws against SNRs equal up to rounding: at most a packet apart.
+    EXPECT_NEAR(by_excess[i].adaptive, by_noise[i].adaptive, 0.02) << i;
+    EXPECT_NEAR(by_excess[i].fixed, by_noise[i].fixed, 0.02) << i;
+  }
+  EXPECT_LT(by_excess.back().adaptive, by_excess.front().adaptive);
+}
+
+TEST(DepthAdaptationSweep, RangesAndQuantitiesAreCheckedWithMessagesThatSayWhy) {
+  EXPECT_EQ(sweep_values(parse_sweep_range("100:112:2")), (std::vector<double>{100, 102, 104, 106, 108, 110, 112}));
+  EXPECT_EQ(sweep_values(parse_sweep_range("-3:3:2.5")), (std::vector<double>{-3, -0.5, 2}));
+  EXPECT_EQ(sweep_values(parse_sweep_range("0:0.3:0.1")).size(), 4u) << "TO on the grid, up to rounding";
+  auto error = [](const std::string& text) {
+    try {
+      parse_sweep_range(text);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error("100:112"), "sweep range \"100:112\" is not FROM:TO:STEP (in dB, e.g. 100:112:2)");
+  EXPECT_EQ(error("100:x:2"), "sweep range \"100:x:2\": TO \"x\" is not a number (FROM:TO:STEP in dB, e.g. 100:112:2)");
+  EXPECT_EQ(error("100:112:0"), "sweep range \"100:112:0\": STEP must be > 0");
+  EXPECT_EQ(error("112:100:2"), "sweep range \"112:100:2\": TO must be at least FROM");
+  EXPECT_EQ(error("0:1000:1"), "sweep range \"0:1000:1\" has more than 200 values: raise STEP");
+  EXPECT_EQ(sweep_quantity_from_string("excess-loss"), SweepQuantity::kExcessLoss);
+  EXPECT_THROW(sweep_quantity_from_string("depth"), std::invalid_argument);
 }
 
 }  // namespace

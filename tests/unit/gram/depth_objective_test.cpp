@@ -342,6 +342,28 @@ TEST(GramDepthObjectivePipeline, WithSonarOptionsTheSignalExcessObjectiveIsUsed)
   EXPECT_EQ(r.best.depth_m, 10);
 }
 
+// The site's corrections (gram/site_correction.h) in the sonar equation:
+// the excess loss adds to H at every depth, the own-ship noise to NL
+// (powers sum), so 90 dB ambient + 90 dB own-ship is 93.01 dB.
+TEST(GramDepthObjectivePipeline, TheSitesExcessLossAndOwnShipNoiseLowerTheSignalExcess) {
+  const std::vector<TransmissionLoss> tl{layered({10, 20, 30}, {60, 70, 90})};
+  DepthObjectiveRequest req = request_at(100);
+  req.sonar = SonarOptions{};
+  req.sonar->source_level_db = 170;
+  req.sonar->noise_level_db = 90;
+  req.sonar->threshold_db = 0;
+  req.sonar->site.excess_loss_db = 4;
+  req.sonar->site.own_ship_noise_db = 90;
+  const auto r = compute_depth_objective(tl, flat_100m(), req);
+  const double nl = 90 + 10 * std::log10(2.0);
+  ASSERT_EQ(r.signal_excess_db.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(r.noise_level_db[i], nl, 1e-9) << i;
+  EXPECT_NEAR(r.signal_excess_db[0], 170 - 64 - nl, 1e-9);
+  EXPECT_NEAR(r.signal_excess_db[1], 170 - 74 - nl, 1e-9);
+  req.sonar->site.excess_loss_db = NAN;
+  EXPECT_EQ(validate_sonar(*req.sonar), "sonar.excess_loss_db = nan must be a finite number");
+}
+
 TEST(GramDepthObjectivePipeline, TheLowpassStartsAtTheShallowestAllowedDepth) {
   const std::vector<TransmissionLoss> tl{layered({10, 20, 30, 40}, {90, 30, 60, 60})};
   DepthObjectiveRequest req = request_at(100);

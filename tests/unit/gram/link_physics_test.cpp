@@ -88,6 +88,36 @@ TEST(LinkPhysics, SnrIsSourceLevelLessLossLessNoise) {
   EXPECT_EQ(shadow.probability, 0.0);
 }
 
+// Powers add: equal levels give +3.01 dB; a level 30 dB below another adds
+// 0.004 dB; nothing (−inf) adds nothing; no overflow at high levels.
+TEST(SiteCorrection, NoiseLevelsAddAsPowers) {
+  EXPECT_NEAR(power_sum_db(70, 70), 70 + 10 * std::log10(2.0), 1e-12);
+  EXPECT_NEAR(power_sum_db(100, 70), 100 + 10 * std::log10(1.001), 1e-12);
+  EXPECT_NEAR(power_sum_db(70, 100), power_sum_db(100, 70), 1e-12);
+  EXPECT_EQ(power_sum_db(80, -INFINITY), 80);
+  EXPECT_NEAR(power_sum_db(4000, 4000), 4000 + 10 * std::log10(2.0), 1e-9);
+  SiteCorrection none;
+  EXPECT_EQ(none.total_noise_db(66), 66);
+}
+
+TEST(SiteCorrection, ExcessLossAndOwnShipNoiseLowerTheSnr) {
+  LinkPhysics p;
+  p.noise_level_db = 70;
+  p.site.excess_loss_db = 6;
+  const LinkOutcome lossy = link_outcome(p, 104.0, 0);  // 190 − (104 + 6) − 70 = 10 dB
+  EXPECT_DOUBLE_EQ(lossy.tl_db, 104.0) << "the model's TL, reported without the site's excess";
+  EXPECT_DOUBLE_EQ(lossy.snr_db, 10.0);
+  EXPECT_DOUBLE_EQ(lossy.probability, 0.5);
+  p.site.excess_loss_db = -3;  // a calibration may find the model pessimistic
+  EXPECT_DOUBLE_EQ(link_outcome(p, 104.0, 0).snr_db, 19.0);
+  p.site.excess_loss_db = 0;
+  p.site.own_ship_noise_db = 70;
+  EXPECT_NEAR(link_outcome(p, 110.0, 0).snr_db, 10 - 10 * std::log10(2.0), 1e-12);
+  EXPECT_EQ(validate_site_correction(p.site, "x."), std::nullopt);
+  p.site.own_ship_noise_db = INFINITY;
+  EXPECT_EQ(validate_site_correction(p.site, "x."), "x.own_ship_noise_db = inf must be a finite number");
+}
+
 TransmissionLoss two_by_three() {
   TransmissionLoss tl;
   tl.range_m = {0, 100, 200};
