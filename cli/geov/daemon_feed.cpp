@@ -146,11 +146,14 @@ void DaemonFeed::subscribe_loop() {
           telemetry::Position p;
           if (p.ParseFromString(message.payload())) {
             fleet_.add_positions({p});
+            // Heard now, through the telemetry it sent (the figures of the
+            // frame, when the daemon passed them on).
+            fleet_.heard(p.src(), message.receive_time(), message.has_link() ? &message.link() : nullptr);
             std::lock_guard lock(mutex_);
             sources_.insert(p.src());
           }
         } else if (message.has_link()) {
-          fleet_.heard(message.src(), message.receive_time(), message.link());
+          fleet_.heard(message.src(), message.receive_time(), &message.link());
           std::lock_guard lock(mutex_);
           sources_.insert(message.src());
         }

@@ -50,11 +50,12 @@ int Fleet::add_positions(const std::vector<telemetry::Position>& positions) {
   return count;
 }
 
-void Fleet::heard(int32_t src, double time, const v1::LinkFigures& figures) {
+void Fleet::heard(int32_t src, double time, const v1::LinkFigures* figures) {
   std::lock_guard lock(mutex_);
   Vehicle& vehicle = vehicles_[src];
+  if (time <= vehicle.last_heard && !figures) return;  // nothing new to show
   vehicle.last_heard = std::max(vehicle.last_heard, time);
-  vehicle.link = figures;
+  if (figures) vehicle.link = *figures;
   publish(src, {});
 }
 

@@ -50,8 +50,9 @@ class Fleet {
 
   // Returns how many were new.
   int add_positions(const std::vector<telemetry::Position>& positions);
-  // A message from `src` reached a daemon, with the modem's figures.
-  void heard(int32_t src, double time, const v1::LinkFigures& figures);
+  // A message from `src` reached a daemon, with the modem's figures (null:
+  // none came with it; the last ones are kept).
+  void heard(int32_t src, double time, const v1::LinkFigures* figures);
   // What `daemon` has queued, by destination (replaces its previous list).
   void set_queued(const std::string& daemon, std::map<int32_t, std::vector<QueuedToVehicle>> by_dest);
 

@@ -78,8 +78,9 @@
       const ring = useLatLon ? L.circle(centre, { radius: r * step, color: '#888', weight: 1, fill: false })
                              : L.circle(centre, { radius: r * step, color: '#888', weight: 1, fill: false });
       ring.addTo(grid);
-      const label = useLatLon ? [centre[0], centre[1] + r * step / (111320 * Math.cos(centre[0] * Math.PI / 180))]
-                              : [0, r * step];
+      // Labelled at the ring's north point, where a view of the fleet most
+      // often has it.
+      const label = useLatLon ? [centre[0] + r * step / 111320, centre[1]] : [r * step, 0];
       L.tooltip({ permanent: true, direction: 'right', className: 'geov-ring-label' })
         .setLatLng(label).setContent((r * step) + ' m').addTo(grid);
     }
@@ -200,12 +201,18 @@
     renderPanel();
   }
 
-  let fitted = false;
+  // The view takes in the whole fleet when a vehicle first appears; after
+  // that it is the operator's (pan and zoom stay where they were put).
+  const fitted = new Set();
   function fit() {
-    if (fitted) return;
     const all = [];
-    for (const v of state.vehicles.values()) for (const p of v.track) if (placeable(p)) all.push(toLatLng(p));
-    if (all.length) { map.fitBounds(L.latLngBounds(all).pad(0.3)); fitted = true; }
+    let newcomer = false;
+    for (const v of state.vehicles.values()) {
+      const points = v.track.filter(placeable);
+      if (points.length && !fitted.has(v.src)) { newcomer = true; fitted.add(v.src); }
+      for (const p of points) all.push(toLatLng(p));
+    }
+    if (newcomer && all.length) map.fitBounds(L.latLngBounds(all).pad(0.3), { animate: false });
   }
 
   function applyUpdate(id, update) {
