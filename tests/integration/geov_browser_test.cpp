@@ -266,7 +266,10 @@ TEST_F(GeovBrowser, BothVehiclesMoveLivePlayBackAndExportAsKml) {
       },
       5s, 200ms));
   EXPECT_EQ(field(first, "mode").string_value(), "live");
-  EXPECT_EQ(browser.execute("return document.querySelectorAll('#vehicles tbody tr').length;").number_value(), 2);
+  // The panel's table: a row per vehicle (redrawn every second).
+  EXPECT_TRUE(wait_until(
+      [&] { return browser.execute("return document.querySelectorAll('#vehicles tbody tr').length;").number_value() == 2; },
+      3s, 200ms));
 
   step("waiting for both to move");
   // 2. They move as new positions arrive, pushed to the page (no reload).

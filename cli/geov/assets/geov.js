@@ -218,7 +218,9 @@
   function applyUpdate(id, update) {
     state.id = id;
     state.updates += 1;
+    const known = state.vehicles.has(update.src);
     const v = vehicle(update.src);
+    if (!known) setTimeout(renderPanel, 0);  // a new row at once, not at the next tick
     addPositions(v, update.added);
     applySummary(v, update);
     if (state.mode === 'live') { drawGrid(); draw(v); fit(); }
