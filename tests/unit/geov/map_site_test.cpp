@@ -5,6 +5,8 @@
 // viewers, and a viewer that leaves.
 #include <gtest/gtest.h>
 
+#include <sqlite3.h>
+
 #include <thread>
 
 #include "geov/assets.h"
@@ -188,6 +190,47 @@ TEST_F(MapSiteTest, ConnectionsBeyondTheBoundAreAnswered503) {
   b.close();
   ASSERT_TRUE(wait_until([&] { return server_->active_connections() == 0; }, 10s));
   EXPECT_EQ(status_of(get(port(), "/")), 200);
+}
+
+// An MBTiles file with one tile at z 1, x 0, y 0 (counted from the north:
+// row 1 from the south), format png.
+std::string write_mbtiles(const std::string& path) {
+  sqlite3* db = nullptr;
+  EXPECT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  const char* sql =
+      "CREATE TABLE metadata (name TEXT, value TEXT); INSERT INTO metadata VALUES ('format', 'png');"
+      "CREATE TABLE tiles (zoom_level INTEGER, tile_column INTEGER, tile_row INTEGER, tile_data BLOB);"
+      "INSERT INTO tiles VALUES (1, 0, 1, X'89504E470D0A1A0A0001');";
+  EXPECT_EQ(sqlite3_exec(db, sql, nullptr, nullptr, nullptr), SQLITE_OK);
+  sqlite3_close(db);
+  return std::string("\x89PNG\r\n\x1a\n\x00\x01", 10);
+}
+
+TEST_F(MapSiteTest, TilesComeFromTheMbtilesFileWithItsRowsCountedFromTheSouth) {
+  const std::string path = "/tmp/acomms-geov-tiles-" + std::to_string(::getpid()) + ".mbtiles";
+  std::remove(path.c_str());
+  const std::string png = write_mbtiles(path);
+  SiteOptions options;
+  options.mbtiles = std::make_shared<MbTiles>(path);
+  start(options);
+  EXPECT_EQ(body_of(get(port(), "/api/config")), "{\"tiles\":\"/tiles/{z}/{x}/{y}\",\"attribution\":\"\"}");
+  const std::string tile = get(port(), "/tiles/1/0/0");
+  EXPECT_EQ(status_of(tile), 200);
+  EXPECT_NE(tile.find("Content-Type: image/png"), std::string::npos);
+  EXPECT_EQ(body_of(tile), png);
+  EXPECT_EQ(status_of(get(port(), "/tiles/1/0/1")), 404);  // the same row counted from the south is empty
+  EXPECT_EQ(status_of(get(port(), "/tiles/1/5/0")), 404);  // outside the zoom's grid
+  EXPECT_EQ(status_of(get(port(), "/tiles/1/0/0.png")), 400);
+  EXPECT_EQ(status_of(get(port(), "/tiles/99/0/0")), 400);
+  EXPECT_EQ(status_of(get(port(), "/tiles/../../etc/passwd")), 400);
+  std::remove(path.c_str());
+  EXPECT_THROW(MbTiles("/nonexistent/chart.mbtiles"), std::runtime_error);
+}
+
+TEST_F(MapSiteTest, WithoutTilesTheConfigAsksForTheMetricGrid) {
+  start();
+  EXPECT_EQ(body_of(get(port(), "/api/config")), "{\"tiles\":null,\"attribution\":\"\"}");
+  EXPECT_EQ(status_of(get(port(), "/tiles/1/0/0")), 404);
 }
 
 // Updates since `after` on a stream that stays open.
