@@ -6,7 +6,8 @@
 // opens the page through chromedriver (webdriver.h).
 //
 // It checks: both vehicles' markers and tracks are drawn and move as new
-// positions arrive; every resource the page loaded came from the map
+// positions arrive; the map server restarts and the page reconnects by
+// itself and ends holding every position (no gap); every resource the page loaded came from the map
 // server; playback of the last minutes runs to its end with every
 // position of the period drawn; the NetworkLink and the history KML parse
 // as KML 2.2 and hold every position the topside's Track holds. A
@@ -290,6 +291,32 @@ TEST_F(GeovBrowser, BothVehiclesMoveLivePlayBackAndExportAsKml) {
       25s, 250ms))
       << browser.execute("return JSON.stringify(geov.summary());").string_value();
 
+  // 2b. The map server restarts: the page reconnects by itself, is told
+  // its ids are of the old server, reloads the snapshot and goes on live.
+  step("restarting the map server");
+  const Value before_restart = summary(browser);
+  map_->signal(SIGTERM);
+  ASSERT_EQ(map_->wait(10s), std::optional<int>(0)) << map_->stderr_text();
+  map_ = std::make_unique<ChildProcess>(
+      ACOMMSCTL_BINARY,
+      std::vector<std::string>{"--socket", socket(kTopside), "geov", "serve", "--listen",
+                               "127.0.0.1:" + std::to_string(port), "--poll", "0.5"},
+      (dir_ / "geov-2").string());
+  ASSERT_TRUE(wait_until(
+      [&] {
+        const Value now = summary(browser);
+        if (field(now, "resets").number_value() < 1 || !field(now, "connected").bool_value()) return false;
+        for (int src : {1, 2}) {
+          if (field(*vehicle(now, src), "positions").number_value() <=
+              field(*vehicle(before_restart, src), "positions").number_value()) {
+            return false;
+          }
+        }
+        return true;
+      },
+      25s, 250ms))
+      << browser.execute("return JSON.stringify(geov.summary());").string_value() << "\n" << map_->stderr_text();
+
   // 3. Nothing came from anywhere but the map server.
   const Value resources = browser.execute("return performance.getEntriesByType('resource').map(e => e.name);");
   EXPECT_GE(resources.list_value().values_size(), 4);
@@ -340,6 +367,17 @@ TEST_F(GeovBrowser, BothVehiclesMoveLivePlayBackAndExportAsKml) {
         return true;
       },
       25s, 500ms));
+  // The page holds every position, through the server's restart: no gap.
+  EXPECT_TRUE(wait_until(
+      [&] {
+        const Value now = summary(browser);
+        for (int src : {1, 2}) {
+          if (field(*vehicle(now, src), "positions").number_value() != tracks[src].positions_size()) return false;
+        }
+        return true;
+      },
+      5s, 200ms))
+      << browser.execute("return JSON.stringify(geov.summary());").string_value();
   const Value link = parse_json(kml_json(http_get(port, "/kml/network.kml"), "network"));
   ASSERT_EQ(field(link, "hrefs").list_value().values_size(), 1);
   const std::string href = field(link, "hrefs").list_value().values(0).string_value();
