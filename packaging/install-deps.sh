@@ -20,6 +20,8 @@ packages=(
   libgeographiclib-dev
   # Leaflet, built into acommsctl for the map page of `geov serve` (cli/geov)
   libjs-leaflet
+  # DejaVu Sans, built into acommsctl for the text in its PNG pictures (cli/plot)
+  fonts-dejavu-core
 )
 if [[ "${1:-}" == "--test" ]]; then
   # clang and its runtime give libFuzzer with ASan/UBSan for the fuzz targets
