@@ -86,7 +86,7 @@ void run(DepthAdaptationOptions& o, const GlobalOptions& global) {
   }
   const eval::DepthAdaptationResult result =
       eval::run_depth_adaptation(imported.environment, config, model ? &*model : nullptr);
-  if (!o.png.empty()) write_depth_adaptation_png(o.png, result);
+  if (!o.png.empty()) write_depth_adaptation_png(o.png, result, o.env);
   std::cout << (global.json ? eval::format_depth_adaptation_json(config, result)
                             : eval::format_depth_adaptation_table(config, result))
             << std::flush;
