@@ -122,42 +122,40 @@ void write_tl_png(const std::string& path, const gram::TransmissionLoss& tl, con
   draw_tl(tl, env, input).write_png(path);
 }
 
-void write_objective_png(const std::string& path, const gram::DepthObjectiveReply& reply) {
-  constexpr int kWidth = 400, kHeight = 400;
+plot::Canvas draw_objective(const gram::DepthObjectiveReply& reply, const std::string& title) {
+  constexpr int kW = 700, kH = 520;
   const auto& points = reply.points();
   if (points.empty()) throw std::runtime_error("no depths to plot");
-  const double z_top = points[0].depth_m(), z_bottom = points[points.size() - 1].depth_m();
-  const double span = std::max(z_bottom - z_top, 1.0);
-  std::vector<Rgb> image(static_cast<std::size_t>(kWidth) * kHeight, Rgb{255, 255, 255});
-  auto pixel = [&](int x, int y) -> Rgb& {
-    return image[static_cast<std::size_t>(std::clamp(y, 0, kHeight - 1)) * kWidth + std::clamp(x, 0, kWidth - 1)];
-  };
-  auto row = [&](double z) { return static_cast<int>((z - z_top) / span * (kHeight - 1)); };
-  auto column = [&](double o) { return static_cast<int>(std::clamp(o, 0.0, 1.0) * (kWidth - 1)); };
+  const double z_top = points[0].depth_m(), z_bottom = std::max(points[points.size() - 1].depth_m(), z_top + 1);
+  plot::Canvas canvas(kW, kH);
+  const plot::Frame f{80, 40, 460, 460, 0.0, 1.0, z_top, z_bottom};
   // Not allowed: beyond the best-depth search's deepest allowed depth.
   for (const auto& p : points)
-    if (p.depth_m() > reply.bottom_m())
-      for (int x = 0; x < kWidth; ++x) pixel(x, row(p.depth_m())) = {235, 235, 235};
+    if (p.depth_m() > reply.bottom_m()) canvas.fill(f.left, f.y_of(p.depth_m()) - 1, f.right, f.y_of(p.depth_m()) + 1, kObjectiveBelow);
+  plot::draw_axes(canvas, f, "Objective (0 to 1)", "Depth (m)", true);
   for (int i = 1; i < points.size(); ++i) {
-    const int y0 = row(points[i - 1].depth_m()), y1 = row(points[i].depth_m());
-    for (int y = y0; y <= y1; ++y) {
-      const double t = y1 == y0 ? 1.0 : double(y - y0) / (y1 - y0);
-      auto at = [&](double a, double b) { return column(a + t * (b - a)); };
-      pixel(at(points[i - 1].objective(), points[i].objective()), y) = {150, 150, 150};
-      const int x = at(points[i - 1].objective_filtered(), points[i].objective_filtered());
-      for (int dx = -1; dx <= 1; ++dx) pixel(x + dx, y) = {0, 0, 0};
-    }
+    const auto& a = points[i - 1];
+    const auto& b = points[i];
+    canvas.line(f.x_of(a.objective()), f.y_of(a.depth_m()), f.x_of(b.objective()), f.y_of(b.depth_m()), kObjectiveRaw);
+    canvas.line(f.x_of(a.objective_filtered()), f.y_of(a.depth_m()), f.x_of(b.objective_filtered()), f.y_of(b.depth_m()),
+                plot::kBlack, 2);
   }
-  const int best = row(reply.best_depth_m());
-  for (int x = 0; x < kWidth; ++x)
-    for (int dy = -1; dy <= 1; ++dy) pixel(x, best + dy) = {200, 0, 0};
-  plot::Canvas canvas(kWidth, kHeight);
-  for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x) {
-      const Rgb& c = image[static_cast<std::size_t>(y) * kWidth + x];
-      canvas.set(x, y, c);
-    }
-  canvas.write_png(path);
+  canvas.line(f.left, f.y_of(reply.best_depth_m()), f.right, f.y_of(reply.best_depth_m()), kObjectiveBest, 3);
+  const int lx = 480, ly = 60;
+  canvas.line(lx, ly, lx + 30, ly, kObjectiveRaw);
+  canvas.text(lx + 38, ly, "objective", 13, plot::kBlack);
+  canvas.line(lx, ly + 22, lx + 30, ly + 22, plot::kBlack, 2);
+  canvas.text(lx + 38, ly + 22, "filtered", 13, plot::kBlack);
+  canvas.line(lx, ly + 44, lx + 30, ly + 44, kObjectiveBest, 3);
+  canvas.text(lx + 38, ly + 44, "best depth " + plot::tick_label(reply.best_depth_m(), 0.1) + " m", 13, plot::kBlack);
+  canvas.fill(lx, ly + 61, lx + 30, ly + 71, kObjectiveBelow);
+  canvas.text(lx + 38, ly + 66, "below the bottom", 13, plot::kBlack);
+  plot::draw_title(canvas, title);
+  return canvas;
+}
+
+void write_objective_png(const std::string& path, const gram::DepthObjectiveReply& reply, const std::string& title) {
+  draw_objective(reply, title).write_png(path);
 }
 
 }  // namespace acomms::cli

@@ -94,3 +94,32 @@ TEST(TlPicture, NiceTicksAreWholeStepsInsideTheRange) {
 
 }  // namespace
 }  // namespace acomms::cli
+
+namespace acomms::cli {
+namespace {
+
+TEST(ObjectivePicture, TheBestDepthIsARedLineWithItsValueInTheLegend) {
+  gram::DepthObjectiveReply reply;
+  reply.set_bottom_m(80);
+  reply.set_best_depth_m(40);
+  for (int z = 0; z <= 100; z += 5) {
+    auto* p = reply.add_points();
+    p->set_depth_m(z);
+    p->set_objective(z / 100.0);
+    p->set_objective_filtered(z / 120.0);
+  }
+  const plot::Canvas c = draw_objective(reply, "Depth objective for test");
+  const int y = 40 + static_cast<int>(std::lround(40.0 / 100 * 420));  // the frame's row of 40 m
+  EXPECT_EQ(c.at(300, y), kObjectiveBest);
+  int ink = 0;
+  for (int yy = 95; yy <= 115; ++yy)
+    for (int x = 515; x <= 690; ++x) ink += !(c.at(x, yy) == plot::kWhite);
+  EXPECT_GT(ink, 100) << "the legend's best depth";
+  ink = 0;
+  for (int yy = 4; yy <= 28; ++yy)
+    for (int x = 0; x < c.width(); ++x) ink += !(c.at(x, yy) == plot::kWhite);
+  EXPECT_GT(ink, 150) << "title";
+}
+
+}  // namespace
+}  // namespace acomms::cli
