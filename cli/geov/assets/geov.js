@@ -201,18 +201,21 @@
     renderPanel();
   }
 
-  // The view takes in the whole fleet when a vehicle first appears; after
-  // that it is the operator's (pan and zoom stay where they were put).
+  // The view takes in the whole fleet when a vehicle first appears, and
+  // again when a vehicle's last position leaves it; otherwise pan and zoom
+  // stay where the operator put them.
   const fitted = new Set();
   function fit() {
     const all = [];
-    let newcomer = false;
+    let refit = false;
+    const view = map.getBounds();
     for (const v of state.vehicles.values()) {
       const points = v.track.filter(placeable);
-      if (points.length && !fitted.has(v.src)) { newcomer = true; fitted.add(v.src); }
+      if (points.length && !fitted.has(v.src)) { refit = true; fitted.add(v.src); }
+      if (points.length && !view.contains(toLatLng(points[points.length - 1]))) refit = true;
       for (const p of points) all.push(toLatLng(p));
     }
-    if (newcomer && all.length) map.fitBounds(L.latLngBounds(all).pad(0.3), { animate: false });
+    if (refit && all.length) map.fitBounds(L.latLngBounds(all).pad(0.3), { animate: false });
   }
 
   function applyUpdate(id, update) {
