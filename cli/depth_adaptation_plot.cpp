@@ -2,119 +2,108 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstdlib>
-#include <stdexcept>
-#include <vector>
+#include <filesystem>
 
-// stb is not ours to lint. STATIC: gram_plot.cpp has its own copy.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STB_IMAGE_WRITE_STATIC
-#include <stb/stb_image_write.h>
-#pragma GCC diagnostic pop
+#include "plot/axes.h"
 
 namespace acomms::cli {
 namespace {
 
-constexpr int kWidth = 800, kHeight = 400, kMargin = 20;
-
-struct Rgb {
-  std::uint8_t r, g, b;
-};
+constexpr int kWidth = 900, kHeight = 520;
+constexpr int kLeft = 80, kTop = 40, kRight = 700, kBottom = 450;
+constexpr int kLegendLeft = 730, kLegendTop = 60, kLegendRow = 22;
 
 // Red (t = 0) through green to blue (t = 1).
-Rgb colour(double t) {
+plot::Rgb colour(double t) {
   t = std::clamp(t, 0.0, 1.0);
   auto channel = [](double x) { return static_cast<std::uint8_t>(220 * std::clamp(1.5 - std::abs(x), 0.0, 1.0)); };
   return {channel(4 * (1 - t) - 3), channel(4 * (1 - t) - 2), channel(4 * (1 - t) - 1)};
 }
 
-class Canvas {
- public:
-  Canvas() : image_(static_cast<std::size_t>(kWidth) * kHeight, Rgb{255, 255, 255}) {}
-  void dot(int x, int y, Rgb c, int radius) {
-    for (int dy = -radius; dy <= radius; ++dy)
-      for (int dx = -radius; dx <= radius; ++dx) {
-        const int px = x + dx, py = y + dy;
-        if (px >= 0 && px < kWidth && py >= 0 && py < kHeight) image_[static_cast<std::size_t>(py) * kWidth + px] = c;
-      }
-  }
-  void line(int x0, int y0, int x1, int y1, Rgb c, int radius) {
-    const int steps = std::max({std::abs(x1 - x0), std::abs(y1 - y0), 1});
-    for (int i = 0; i <= steps; ++i)
-      dot(x0 + (x1 - x0) * i / steps, y0 + (y1 - y0) * i / steps, c, radius);
-  }
-  void write(const std::string& path) const {
-    if (!stbi_write_png(path.c_str(), kWidth, kHeight, 3, image_.data(), kWidth * 3))
-      throw std::runtime_error("cannot write " + path);
-  }
-
- private:
-  std::vector<Rgb> image_;
-};
-
 }  // namespace
 
-void write_depth_adaptation_png(const std::string& path, const eval::DepthAdaptationResult& result) {
-  Canvas canvas;
-  const int left = kMargin, right = kWidth - kMargin, top = kMargin, bottom = kHeight - kMargin;
-  auto y_of = [&](double p) { return bottom - static_cast<int>(std::lround(p * (bottom - top))); };
-  for (int q = 0; q <= 4; ++q) canvas.line(left, y_of(q / 4.0), right, y_of(q / 4.0), {225, 225, 225}, 0);
-  canvas.line(left, top, left, bottom, {0, 0, 0}, 0);
-  canvas.line(left, bottom, right, bottom, {0, 0, 0}, 0);
-  const std::size_t bins = result.bin_edges_m.size() - 1;
-  auto x_of = [&](std::size_t b) {
-    return left + static_cast<int>(std::lround((b + 0.5) * (right - left) / static_cast<double>(bins)));
-  };
+plot::Rgb strategy_colour(const eval::DepthAdaptationResult& result, std::size_t s) {
   const std::size_t fixed = result.strategies.size() - 1;
-  for (std::size_t s = 0; s < result.strategies.size(); ++s) {
-    const eval::StrategyResult& strategy = result.strategies[s];
-    const bool adaptive = s == fixed;
-    const Rgb c = adaptive ? Rgb{0, 0, 0} : colour(fixed > 1 ? double(s) / double(fixed - 1) : 0.0);
-    const int width = adaptive ? 2 : 1;
-    for (std::size_t b = 0; b < bins; ++b) {
-      canvas.dot(x_of(b), y_of(strategy.receipt(b)), c, width + 2);
-      if (b > 0) canvas.line(x_of(b - 1), y_of(strategy.receipt(b - 1)), x_of(b), y_of(strategy.receipt(b)), c, width - 1 + 1);
-    }
-  }
-  canvas.write(path);
+  if (s == fixed) return plot::kBlack;  // the adaptive strategy, last
+  return colour(fixed > 1 ? double(s) / double(fixed - 1) : 0.0);
 }
 
-void write_depth_adaptation_sweep_png(const std::string& path, eval::SweepQuantity /*quantity*/,
-                                      const std::vector<eval::SweepPoint>& points) {
-  Canvas canvas;
-  const int left = kMargin, right = kWidth - kMargin, top = kMargin, bottom = kHeight - kMargin;
-  auto y_of = [&](double p) { return bottom - static_cast<int>(std::lround(std::clamp(p, 0.0, 1.0) * (bottom - top))); };
-  for (int q = 0; q <= 4; ++q) canvas.line(left, y_of(q / 4.0), right, y_of(q / 4.0), {225, 225, 225}, 0);
-  canvas.line(left, top, left, bottom, {0, 0, 0}, 0);
-  canvas.line(left, bottom, right, bottom, {0, 0, 0}, 0);
-  if (points.empty()) return canvas.write(path);
-  const double lo = points.front().value, hi = points.back().value;
-  auto x_of = [&](double v) {
-    const double t = hi > lo ? (v - lo) / (hi - lo) : 0.5;
-    return left + 10 + static_cast<int>(std::lround(t * (right - left - 20)));
-  };
-  // The best fixed depth red, adaptive black; each value's ±1 SE as a bar.
-  const Rgb red{200, 30, 30}, black{0, 0, 0};
+int legend_x() { return kLegendLeft + 15; }
+int legend_y(std::size_t s) { return kLegendTop + static_cast<int>(s) * kLegendRow; }
+
+plot::Canvas draw_depth_adaptation(const eval::DepthAdaptationResult& result, const std::string& input) {
+  plot::Canvas canvas(kWidth, kHeight);
+  const std::size_t bins = result.bin_edges_m.size() - 1;
+  auto centre_km = [&](std::size_t b) { return (result.bin_edges_m[b] + result.bin_edges_m[b + 1]) / 2000; };
+  const plot::Frame frame{kLeft, kTop, kRight, kBottom, result.bin_edges_m.front() / 1000,
+                          result.bin_edges_m.back() / 1000, 1.0, 0.0};
+  plot::draw_axes(canvas, frame, "Range (km)", "Packets received (fraction)", true);
+  const std::size_t adaptive = result.strategies.size() - 1;
+  for (std::size_t s = 0; s < result.strategies.size(); ++s) {
+    const eval::StrategyResult& strategy = result.strategies[s];
+    const plot::Rgb c = strategy_colour(result, s);
+    const int thickness = s == adaptive ? 3 : 2;
+    for (std::size_t b = 0; b < bins; ++b) {
+      const int x = frame.x_of(centre_km(b)), y = frame.y_of(strategy.receipt(b));
+      canvas.fill(x - 2, y - 2, x + 2, y + 2, c);
+      if (b > 0) canvas.line(frame.x_of(centre_km(b - 1)), frame.y_of(strategy.receipt(b - 1)), x, y, c, thickness);
+    }
+    // The legend: a sample of the line and the strategy's name.
+    const int ly = legend_y(s);
+    canvas.line(kLegendLeft, ly, kLegendLeft + 30, ly, c, thickness);
+    canvas.text(kLegendLeft + 38, ly, s == adaptive ? "adaptive" : "fixed at " + strategy.name, 13, plot::kBlack);
+  }
+  canvas.text(kLegendLeft, kLegendTop - 22, "Strategy", 14, plot::kBlack);
+  plot::draw_title(canvas, "Depth adaptation: packets received against range, " +
+                               std::filesystem::path(input).filename().string());
+  return canvas;
+}
+
+void write_depth_adaptation_png(const std::string& path, const eval::DepthAdaptationResult& result,
+                                const std::string& input) {
+  draw_depth_adaptation(result, input).write_png(path);
+}
+
+plot::Canvas draw_depth_adaptation_sweep(eval::SweepQuantity quantity, const std::vector<eval::SweepPoint>& points,
+                                         const std::string& input) {
+  plot::Canvas canvas(kWidth, kHeight);
+  const double lo = points.empty() ? 0 : points.front().value, hi = points.empty() ? 1 : points.back().value;
+  const double pad = hi > lo ? 0 : 1;  // one value: a unit either side
+  const plot::Frame frame{kLeft, kTop, kRight, kBottom, lo - pad, hi + pad, 1.0, 0.0};
+  const bool noise = quantity == eval::SweepQuantity::kNoise;
+  plot::draw_axes(canvas, frame, noise ? "Band noise level NL (dB re 1 uPa)" : "Excess loss (dB)",
+                  "Packets received (fraction)", true);
+  // Adaptive black, the best fixed depth red; each value's ±1 SE a bar.
+  const plot::Rgb red{200, 30, 30};
   for (std::size_t i = 0; i < points.size(); ++i) {
     const eval::SweepPoint& p = points[i];
-    const int x = x_of(p.value);
-    canvas.line(x + 2, y_of(p.fixed - p.fixed_se), x + 2, y_of(p.fixed + p.fixed_se), red, 0);
-    canvas.line(x - 2, y_of(p.adaptive - p.adaptive_se), x - 2, y_of(p.adaptive + p.adaptive_se), black, 0);
-    canvas.dot(x + 2, y_of(p.fixed), red, 2);
-    canvas.dot(x - 2, y_of(p.adaptive), black, 3);
+    const int x = frame.x_of(p.value);
+    canvas.line(x + 3, frame.y_of(std::min(1.0, p.fixed + p.fixed_se)), x + 3,
+                frame.y_of(std::max(0.0, p.fixed - p.fixed_se)), red, 1);
+    canvas.line(x - 3, frame.y_of(std::min(1.0, p.adaptive + p.adaptive_se)), x - 3,
+                frame.y_of(std::max(0.0, p.adaptive - p.adaptive_se)), plot::kBlack, 1);
+    canvas.fill(x + 1, frame.y_of(p.fixed) - 2, x + 5, frame.y_of(p.fixed) + 2, red);
+    canvas.fill(x - 5, frame.y_of(p.adaptive) - 2, x - 1, frame.y_of(p.adaptive) + 2, plot::kBlack);
     if (i > 0) {
       const eval::SweepPoint& q = points[i - 1];
-      canvas.line(x_of(q.value) + 2, y_of(q.fixed), x + 2, y_of(p.fixed), red, 0);
-      canvas.line(x_of(q.value) - 2, y_of(q.adaptive), x - 2, y_of(p.adaptive), black, 1);
+      canvas.line(frame.x_of(q.value) + 3, frame.y_of(q.fixed), x + 3, frame.y_of(p.fixed), red, 2);
+      canvas.line(frame.x_of(q.value) - 3, frame.y_of(q.adaptive), x - 3, frame.y_of(p.adaptive), plot::kBlack, 3);
     }
   }
-  canvas.write(path);
+  canvas.text(kLegendLeft, kLegendTop - 22, "Strategy", 14, plot::kBlack);
+  canvas.line(kLegendLeft, legend_y(0), kLegendLeft + 30, legend_y(0), plot::kBlack, 3);
+  canvas.text(kLegendLeft + 38, legend_y(0), "adaptive", 13, plot::kBlack);
+  canvas.line(kLegendLeft, legend_y(1), kLegendLeft + 30, legend_y(1), red, 2);
+  canvas.text(kLegendLeft + 38, legend_y(1), "best fixed depth", 13, plot::kBlack);
+  canvas.text(kLegendLeft, legend_y(2) + 6, "bars: +-1 standard error", 12, plot::kBlack);
+  plot::draw_title(canvas, std::string("Depth adaptation across ") + (noise ? "the noise level" : "the excess loss") +
+                               ", " + std::filesystem::path(input).filename().string());
+  return canvas;
+}
+
+void write_depth_adaptation_sweep_png(const std::string& path, eval::SweepQuantity quantity,
+                                      const std::vector<eval::SweepPoint>& points, const std::string& input) {
+  draw_depth_adaptation_sweep(quantity, points, input).write_png(path);
 }
 
 }  // namespace acomms::cli

@@ -10,6 +10,7 @@
 #include "global_options.h"
 #include "output.h"
 #include "rpc_error.h"
+#include "time_arg.h"
 #include "util/seconds.h"
 
 namespace acomms::cli {
@@ -100,33 +101,6 @@ void run_events(const GlobalOptions& global, const EventsOptions& options) {
 const std::vector<std::string>& event_kinds() {
   static const std::vector<std::string> kinds = {"queued", "sent", "acked", "expired", "dropped", "retry", "received"};
   return kinds;
-}
-
-double parse_time(const std::string& text, double now_s) {
-  if (text == "now") return now_s;
-  auto bad = [&] {
-    return UsageError("time \"" + text + "\": give seconds since the Unix epoch, \"now\", or -30s, -10m, -2h, -1d");
-  };
-  if (text.size() >= 3 && text[0] == '-') {
-    double unit = 0;
-    switch (text.back()) {
-      case 's': unit = 1; break;
-      case 'm': unit = 60; break;
-      case 'h': unit = 3600; break;
-      case 'd': unit = 86400; break;
-      default: throw bad();
-    }
-    double amount = 0;
-    const char* end = text.data() + text.size() - 1;
-    auto [ptr, error] = std::from_chars(text.data() + 1, end, amount);
-    if (error != std::errc() || ptr != end || amount < 0) throw bad();
-    return now_s - amount * unit;
-  }
-  double seconds = 0;
-  const char* end = text.data() + text.size();
-  auto [ptr, error] = std::from_chars(text.data(), end, seconds);
-  if (text.empty() || error != std::errc() || ptr != end || seconds < 0) throw bad();
-  return seconds;
 }
 
 void add_events_command(CLI::App& app, const GlobalOptions& global) {

@@ -80,7 +80,7 @@ void run_tl(const GramOptions& o) {
   const auto tl = gram::compute_transmission_loss(env, run);
   report_beams(env, tl.beam_count);
   if (!o.png.empty()) {
-    write_tl_png(o.png, tl, env);
+    write_tl_png(o.png, tl, env, o.env);
     return;
   }
   if (shd) {

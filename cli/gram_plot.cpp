@@ -3,30 +3,27 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 #include <vector>
 
 #include "gram/sound_speed_profile.h"
-
-// stb is not ours to lint.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STB_IMAGE_WRITE_STATIC
-#include <stb/stb_image_write.h>
-#pragma GCC diagnostic pop
+#include "plot/axes.h"
 
 namespace acomms::cli {
 namespace {
 
-constexpr int kFieldWidth = 800, kHeight = 400, kGap = 8, kProfileWidth = 160;
-constexpr double kDynamicRangeDb = 60.0;
+using plot::Rgb;
 
-struct Rgb {
-  std::uint8_t r, g, b;
-};
+// Layout: the field, its colour bar, then the profile; room for the title
+// above and the axes' numbers and names around.
+constexpr int kWidth = 1100, kHeight = 520;
+constexpr plot::Rgb kShadow{220, 220, 220};
+constexpr double kDynamicRangeDb = 60.0;
+constexpr int kFieldLeft = 80, kFieldRight = 760, kTop = 40, kBottom = 460;
+constexpr int kBarLeft = 780, kBarRight = 800;
+constexpr int kProfileLeft = 900, kProfileRight = 1080;
 
 // A "jet"-like scale: 0 → dark red (loud), 1 → dark blue (quiet).
 Rgb colour(double t) {
@@ -42,83 +39,123 @@ std::size_t nearest(const std::vector<double>& sorted_or_not, double x) {
   return best;
 }
 
+void draw_colour_bar(plot::Canvas& canvas, double best) {
+  for (int y = kTop; y <= kBottom; ++y) {
+    const double db = best + kDynamicRangeDb * (y - kTop) / double(kBottom - kTop);
+    canvas.line(kBarLeft, y, kBarRight, y, colour((db - best) / kDynamicRangeDb));
+  }
+  const plot::Frame bar{kBarLeft, kTop, kBarRight, kBottom, 0, 1, best, best + kDynamicRangeDb};
+  const std::vector<double> ticks = plot::nice_ticks(best, best + kDynamicRangeDb, 6);
+  for (double db : ticks) {
+    canvas.line(kBarRight, bar.y_of(db), kBarRight + 4, bar.y_of(db), plot::kBlack);
+    canvas.text(kBarRight + 7, bar.y_of(db), plot::tick_label(db, ticks.size() > 1 ? ticks[1] - ticks[0] : 1), 12,
+                plot::kBlack);
+  }
+  canvas.text(kBarRight + 46, (kTop + kBottom) / 2.0, "TL (dB re 1 m)", 14, plot::kBlack, plot::Align::kCentre, true);
+}
+
 }  // namespace
 
-void write_tl_png(const std::string& path, const gram::TransmissionLoss& tl, const gram::Environment& env) {
-  if (tl.irregular) throw std::runtime_error("--png needs a rectilinear receiver grid");
-  const int width = kFieldWidth + kGap + kProfileWidth;
-  std::vector<Rgb> image(static_cast<std::size_t>(width) * kHeight, Rgb{255, 255, 255});
-  auto pixel = [&](int x, int y) -> Rgb& { return image[static_cast<std::size_t>(y) * width + x]; };
+Rgb tl_colour(double db, double best_db) { return colour((db - best_db) / kDynamicRangeDb); }
+int tl_colour_bar_x() { return (kBarLeft + kBarRight) / 2; }
+int tl_colour_bar_y(double db, double best_db) {
+  return kTop + static_cast<int>(std::lround((db - best_db) / kDynamicRangeDb * (kBottom - kTop)));
+}
 
+plot::Canvas draw_tl(const gram::TransmissionLoss& tl, const gram::Environment& env, const std::string& input) {
+  if (tl.irregular) throw std::runtime_error("--png needs a rectilinear receiver grid");
+  plot::Canvas canvas(kWidth, kHeight);
   double best = INFINITY;
   for (double v : tl.tl_db)
     if (std::isfinite(v)) best = std::min(best, v);
+  if (!std::isfinite(best)) best = 0;
+  best = std::floor(best);  // the bar starts on a whole dB
   const auto [r_min, r_max] = std::minmax_element(tl.range_m.begin(), tl.range_m.end());
   const double z_top = env.sound_speed(0).depth_m();
   const double z_bottom = env.sound_speed(env.sound_speed_size() - 1).depth_m();
   const std::size_t nr = tl.range_m.size();
+  const int w = kFieldRight - kFieldLeft, h = kBottom - kTop;
   // Nearest receiver per pixel column and row (receiver lists are short).
-  std::vector<std::size_t> column_of(kFieldWidth), row_of(kHeight);
-  for (int x = 0; x < kFieldWidth; ++x)
-    column_of[x] = nearest(tl.range_m, *r_min + (*r_max - *r_min) * (x + 0.5) / kFieldWidth);
-  for (int y = 0; y < kHeight; ++y)
-    row_of[y] = nearest(tl.depth_m, z_top + (z_bottom - z_top) * (y + 0.5) / kHeight);
-  for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kFieldWidth; ++x) {
+  std::vector<std::size_t> column_of(w), row_of(h);
+  for (int x = 0; x < w; ++x) column_of[x] = nearest(tl.range_m, *r_min + (*r_max - *r_min) * (x + 0.5) / w);
+  for (int y = 0; y < h; ++y) row_of[y] = nearest(tl.depth_m, z_top + (z_bottom - z_top) * (y + 0.5) / h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
       const double v = tl.tl_db[row_of[y] * nr + column_of[x]];
-      pixel(x, y) = std::isfinite(v) ? colour((v - best) / kDynamicRangeDb) : Rgb{220, 220, 220};
+      canvas.set(kFieldLeft + x, kTop + y, std::isfinite(v) ? colour((v - best) / kDynamicRangeDb) : kShadow);
     }
+  const plot::Frame field{kFieldLeft, kTop, kFieldRight, kBottom, *r_min / 1000, *r_max / 1000, z_top, z_bottom};
+  plot::draw_axes(canvas, field, "Range (km)", "Depth (m)");
+  // The source: a dot ringed in white at range 0 and its depth.
+  const int sx = field.x_of(0), sy = field.y_of(env.source_depth_m());
+  for (int r = 7; r >= 0; --r)
+    for (int dy = -r; dy <= r; ++dy)
+      for (int dx = -r; dx <= r; ++dx)
+        if (dx * dx + dy * dy <= r * r) canvas.set(sx + dx, sy + dy, r > 4 ? plot::kWhite : plot::kBlack);
+  canvas.text(sx + 10, sy, "source", 12, plot::kBlack);
+  draw_colour_bar(canvas, best);
 
-  // The profile: c on the horizontal axis, the same depths down.
+  // The profile: c across, the same depths down.
   const gram::SoundSpeedProfile ssp(env);
-  std::vector<double> speed(kHeight);
-  for (int y = 0; y < kHeight; ++y) {
-    const double z = z_top + (z_bottom - z_top) * (y + 0.5) / kHeight;
+  std::vector<double> speed(h);
+  for (int y = 0; y < h; ++y) {
+    const double z = z_top + (z_bottom - z_top) * (y + 0.5) / h;
     speed[y] = ssp.at(z, ssp.layer_at(z, 1.0)).c;
   }
   const auto [c_min, c_max] = std::minmax_element(speed.begin(), speed.end());
-  const double span = std::max(*c_max - *c_min, 1.0);
-  const int x0 = kFieldWidth + kGap + 4;
-  for (int y = 0; y < kHeight; ++y) {
-    pixel(kFieldWidth + kGap, y) = {0, 0, 0};  // the profile's axis
-    const int x = x0 + static_cast<int>((speed[y] - *c_min) / span * (kProfileWidth - 10));
-    for (int dx = -1; dx <= 1; ++dx) pixel(std::clamp(x + dx, x0, width - 1), y) = {0, 0, 0};
-  }
-  if (!stbi_write_png(path.c_str(), width, kHeight, 3, image.data(), width * 3))
-    throw std::runtime_error("cannot write " + path);
+  const double pad = std::max((*c_max - *c_min) * 0.1, 1.0);
+  const plot::Frame profile{kProfileLeft, kTop, kProfileRight, kBottom, *c_min - pad, *c_max + pad, z_top, z_bottom};
+  plot::draw_axes(canvas, profile, "Sound speed (m/s)", "", true);  // the field's depth axis names both
+  for (int y = 1; y < h; ++y)
+    canvas.line(profile.x_of(speed[y - 1]), kTop + y - 1, profile.x_of(speed[y]), kTop + y, plot::kBlack, 2);
+
+  char frequency[32];
+  std::snprintf(frequency, sizeof frequency, "%g Hz", env.frequency_hz());
+  const std::string name = std::filesystem::path(input).filename().string();
+  plot::draw_title(canvas, "Transmission loss of " + name + (env.title().empty() ? "" : " (" + env.title() + ")") +
+                               ", " + frequency + ", source at " + plot::tick_label(env.source_depth_m(), 0.1) + " m");
+  return canvas;
 }
 
-void write_objective_png(const std::string& path, const gram::DepthObjectiveReply& reply) {
-  constexpr int kWidth = 400;
+void write_tl_png(const std::string& path, const gram::TransmissionLoss& tl, const gram::Environment& env,
+                  const std::string& input) {
+  draw_tl(tl, env, input).write_png(path);
+}
+
+plot::Canvas draw_objective(const gram::DepthObjectiveReply& reply, const std::string& title) {
+  constexpr int kW = 700, kH = 520;
   const auto& points = reply.points();
   if (points.empty()) throw std::runtime_error("no depths to plot");
-  const double z_top = points[0].depth_m(), z_bottom = points[points.size() - 1].depth_m();
-  const double span = std::max(z_bottom - z_top, 1.0);
-  std::vector<Rgb> image(static_cast<std::size_t>(kWidth) * kHeight, Rgb{255, 255, 255});
-  auto pixel = [&](int x, int y) -> Rgb& {
-    return image[static_cast<std::size_t>(std::clamp(y, 0, kHeight - 1)) * kWidth + std::clamp(x, 0, kWidth - 1)];
-  };
-  auto row = [&](double z) { return static_cast<int>((z - z_top) / span * (kHeight - 1)); };
-  auto column = [&](double o) { return static_cast<int>(std::clamp(o, 0.0, 1.0) * (kWidth - 1)); };
+  const double z_top = points[0].depth_m(), z_bottom = std::max(points[points.size() - 1].depth_m(), z_top + 1);
+  plot::Canvas canvas(kW, kH);
+  const plot::Frame f{80, 40, 460, 460, 0.0, 1.0, z_top, z_bottom};
   // Not allowed: beyond the best-depth search's deepest allowed depth.
   for (const auto& p : points)
-    if (p.depth_m() > reply.bottom_m())
-      for (int x = 0; x < kWidth; ++x) pixel(x, row(p.depth_m())) = {235, 235, 235};
+    if (p.depth_m() > reply.bottom_m()) canvas.fill(f.left, f.y_of(p.depth_m()) - 1, f.right, f.y_of(p.depth_m()) + 1, kObjectiveBelow);
+  plot::draw_axes(canvas, f, "Objective (0 to 1)", "Depth (m)", true);
   for (int i = 1; i < points.size(); ++i) {
-    const int y0 = row(points[i - 1].depth_m()), y1 = row(points[i].depth_m());
-    for (int y = y0; y <= y1; ++y) {
-      const double t = y1 == y0 ? 1.0 : double(y - y0) / (y1 - y0);
-      auto at = [&](double a, double b) { return column(a + t * (b - a)); };
-      pixel(at(points[i - 1].objective(), points[i].objective()), y) = {150, 150, 150};
-      const int x = at(points[i - 1].objective_filtered(), points[i].objective_filtered());
-      for (int dx = -1; dx <= 1; ++dx) pixel(x + dx, y) = {0, 0, 0};
-    }
+    const auto& a = points[i - 1];
+    const auto& b = points[i];
+    canvas.line(f.x_of(a.objective()), f.y_of(a.depth_m()), f.x_of(b.objective()), f.y_of(b.depth_m()), kObjectiveRaw);
+    canvas.line(f.x_of(a.objective_filtered()), f.y_of(a.depth_m()), f.x_of(b.objective_filtered()), f.y_of(b.depth_m()),
+                plot::kBlack, 2);
   }
-  const int best = row(reply.best_depth_m());
-  for (int x = 0; x < kWidth; ++x)
-    for (int dy = -1; dy <= 1; ++dy) pixel(x, best + dy) = {200, 0, 0};
-  if (!stbi_write_png(path.c_str(), kWidth, kHeight, 3, image.data(), kWidth * 3))
-    throw std::runtime_error("cannot write " + path);
+  canvas.line(f.left, f.y_of(reply.best_depth_m()), f.right, f.y_of(reply.best_depth_m()), kObjectiveBest, 3);
+  const int lx = 480, ly = 60;
+  canvas.line(lx, ly, lx + 30, ly, kObjectiveRaw);
+  canvas.text(lx + 38, ly, "objective", 13, plot::kBlack);
+  canvas.line(lx, ly + 22, lx + 30, ly + 22, plot::kBlack, 2);
+  canvas.text(lx + 38, ly + 22, "filtered", 13, plot::kBlack);
+  canvas.line(lx, ly + 44, lx + 30, ly + 44, kObjectiveBest, 3);
+  canvas.text(lx + 38, ly + 44, "best depth " + plot::tick_label(reply.best_depth_m(), 0.1) + " m", 13, plot::kBlack);
+  canvas.fill(lx, ly + 61, lx + 30, ly + 71, kObjectiveBelow);
+  canvas.text(lx + 38, ly + 66, "below the bottom", 13, plot::kBlack);
+  plot::draw_title(canvas, title);
+  return canvas;
+}
+
+void write_objective_png(const std::string& path, const gram::DepthObjectiveReply& reply, const std::string& title) {
+  draw_objective(reply, title).write_png(path);
 }
 
 }  // namespace acomms::cli

@@ -1,25 +1,40 @@
 #pragma once
 // A picture of a transmission-loss field, for `acommsctl gram tl --png`:
-// TL against range (across) and depth (down) in a colour scale from the
-// field's lowest TL (dark red) to 60 dB more (dark blue); receivers with no
-// value or in shadow are light grey. To the right, the sound speed profile
-// on the same depth axis. No text: the numbers are in the CSV output.
+// TL against range (across, km) and depth (down, m) in a colour scale from
+// the field's lowest TL (dark red) to 60 dB more (dark blue), with its
+// colour bar in dB; receivers with no value or in shadow are light grey. To
+// the right, the sound speed profile (m/s) on the same depth axis. A title
+// names the input and the frequency; the source is a white-ringed dot at
+// range 0 and its depth.
 
 #include <string>
 
 #include "acomms/gram/depth_objective.pb.h"
 #include "acomms/gram/environment.pb.h"
 #include "gram/transmission_loss.h"
+#include "plot/canvas.h"
 
 namespace acomms::cli {
 
 // Writes `path` as PNG; throws std::runtime_error if it cannot be written.
-void write_tl_png(const std::string& path, const gram::TransmissionLoss& tl,
-                  const gram::Environment& env);
+// `input` names the environment in the title (its file name).
+void write_tl_png(const std::string& path, const gram::TransmissionLoss& tl, const gram::Environment& env,
+                  const std::string& input);
+// The picture itself, for tests.
+plot::Canvas draw_tl(const gram::TransmissionLoss& tl, const gram::Environment& env, const std::string& input);
+// The colour of TL `db` when the field's lowest is `best_db`.
+plot::Rgb tl_colour(double db, double best_db);
+// Where draw_tl puts the colour bar (x of its middle, y of `db`).
+int tl_colour_bar_x();
+int tl_colour_bar_y(double db, double best_db);
 
-// The depth objective, for `acommsctl gram depth --png`: depth down, the
-// objective across [0, 1]; raw in grey, filtered in black, the best depth
-// as a red line, depths below the window's shallowest bottom shaded. No text.
-void write_objective_png(const std::string& path, const gram::DepthObjectiveReply& reply);
+// The depth objective, for `acommsctl gram depth --png`: depth down (m),
+// the objective across [0, 1]; raw in grey, filtered in black, the best
+// depth (where the receiver is sent) as a red line, depths below the
+// window's shallowest bottom shaded; a legend and a title (`title`: what
+// was asked).
+void write_objective_png(const std::string& path, const gram::DepthObjectiveReply& reply, const std::string& title);
+plot::Canvas draw_objective(const gram::DepthObjectiveReply& reply, const std::string& title);
+inline constexpr plot::Rgb kObjectiveRaw{150, 150, 150}, kObjectiveBest{200, 0, 0}, kObjectiveBelow{235, 235, 235};
 
 }  // namespace acomms::cli

@@ -95,7 +95,12 @@ void run_depth(const DepthOptions& o, const GlobalOptions& global) {
   check(stub->DepthObjective(&context, request, &response));
   if (global.json) print_json(response);
   else print_objective(response);
-  if (!o.png.empty()) write_objective_png(o.png, response.reply());
+  if (!o.png.empty()) {
+    char title[160];
+    std::snprintf(title, sizeof title, "Depth objective for %s, %.0f m away, H_max %.1f dB", o.consumer.c_str(), o.range_m,
+                  response.reply().h_max_db());
+    write_objective_png(o.png, response.reply(), title);
+  }
 }
 
 void run_env_show(const GlobalOptions& global) {

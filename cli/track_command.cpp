@@ -9,8 +9,10 @@
 #include "api_client.h"
 #include "events_command.h"
 #include "global_options.h"
+#include "kml.h"
 #include "output.h"
 #include "rpc_error.h"
+#include "time_arg.h"
 #include "util/seconds.h"
 
 namespace acomms::cli {
@@ -91,10 +93,7 @@ void write_track_kml(const v1::TrackResponse& track, int32_t src, std::ostream& 
   const char* geometry = track.positions_size() == 1 ? "Point" : "LineString";
   out << "<Placemark>\n<name>node " << src << "</name>\n<" << geometry << ">\n"
       << "<altitudeMode>absolute</altitudeMode>\n<coordinates>\n";
-  // lon,lat,altitude: x before y, as KML orders them; altitude is metres
-  // above sea level, so minus the depth.
-  for (const telemetry::Position& p : track.positions())
-    out << number(p.lon()) << ',' << number(p.lat()) << ',' << number(0.0 - p.depth()) << '\n';  // not "-0"
+  write_kml_coordinates({track.positions().begin(), track.positions().end()}, out);
   out << "</coordinates>\n</" << geometry << ">\n</Placemark>\n</Document>\n</kml>\n";
 }
 

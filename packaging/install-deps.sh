@@ -18,6 +18,10 @@ packages=(
   libeigen3-dev
   # WGS84 lat/lon <-> local metres for the telemetry datum (static archive)
   libgeographiclib-dev
+  # Leaflet, built into acommsctl for the map page of `geov serve` (cli/geov)
+  libjs-leaflet
+  # DejaVu Sans, built into acommsctl for the text in its PNG pictures (cli/plot)
+  fonts-dejavu-core
 )
 if [[ "${1:-}" == "--test" ]]; then
   # clang and its runtime give libFuzzer with ASan/UBSan for the fuzz targets
@@ -28,6 +32,8 @@ if [[ "${1:-}" == "--test" ]]; then
   packages+=(dpkg-dev systemd)
   # the TLS tests make their CAs and certificates with the openssl command
   packages+=(openssl)
+  # the map page in a real headless browser (tests/integration/geov_browser_test.cpp)
+  packages+=(chromium chromium-driver)
 fi
 
 missing=()

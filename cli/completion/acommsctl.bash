@@ -20,7 +20,7 @@ _acommsctl() {
   for ((i = 1; i < COMP_CWORD; i++)); do
     word="${COMP_WORDS[i]}"
     case "${path:+$path }$word" in
-      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link enable"|"link disable"|"link raw"|"link ping"|"link lbl"|"link mini"|"link cycle"|"events"|"nav"|"track"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"sim depth-adaptation"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"gram depth"|"gram env"|"gram env show"|"gram env update"|"completion") path="${path:+$path }$word" ;;
+      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link enable"|"link disable"|"link raw"|"link ping"|"link lbl"|"link mini"|"link cycle"|"events"|"nav"|"track"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"sim depth-adaptation"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"gram depth"|"gram env"|"gram env show"|"gram env update"|"geov"|"geov serve"|"completion") path="${path:+$path }$word" ;;
     esac
   done
   case "$path" in
@@ -32,7 +32,7 @@ _acommsctl() {
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "status defs send sub queue link events nav track dccl sim gram completion --help -h --socket -s --timeout --json --ca --cert --key --insecure --version" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "status defs send sub queue link events nav track dccl sim gram geov completion --help -h --socket -s --timeout --json --ca --cert --key --insecure --version" -- "$cur")) ;;
     "status")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -407,6 +407,27 @@ _acommsctl() {
         --ctd|--time|--timeout) COMPREPLY=(); return ;;
       esac
       COMPREPLY=($(compgen -W "--help -h --ctd --time --clear --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "geov")
+      case "$prev" in
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "serve --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "geov serve")
+      case "$prev" in
+        --daemon) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --token-file) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --mbtiles) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --listen|--tiles|--attribution|--max-connections|--kml-refresh|--poll|--timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "--help -h --listen --daemon --token-file --insecure-http --tiles --mbtiles --attribution --max-connections --kml-refresh --poll --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "completion")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;

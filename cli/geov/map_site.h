@@ -1,0 +1,65 @@
+#pragma once
+// What `acommsctl geov serve` answers over HTTP: the page and Leaflet (built
+// in), the fleet as JSON, its changes as server-sent events, its history
+// for playback, KML for Google Earth, and tiles from an MBTiles file.
+//
+//   GET /, /geov.js, /geov.css, /leaflet.js, /leaflet.css, /images/*.png
+//   GET /api/config                     tiles or the metric grid
+//   GET /api/fleet                      snapshot: every vehicle with its track
+//   GET /api/history?from=T&to=T[&src=N]  positions in [from, to]
+//   GET /events[?after=EPOCH:ID]        server-sent events (Last-Event-ID too)
+//   GET /kml/network.kml                NetworkLink refreshing /kml/live.kml
+//   GET /kml/live.kml                   last positions and tracks
+//   GET /kml/history.kml?from=T&to=T[&src=N]  time-stamped positions
+//   GET /tiles/Z/X/Y                    from --mbtiles
+// T is seconds since the Unix epoch, "now", or -30s, -10m, -2h, -1d.
+//
+// Everything but the built-in files needs the token when one is set
+// (?token=T, or "Authorization: Bearer T"): the files hold no data, and a
+// browser loads them before the page's script can add the token.
+// Errors are an HTTP status and one line of text: 400 for a bad parameter
+// (named), 401 without the token, 404 for an unknown path or vehicle
+// (naming the known ones), 409 for KML of positions without lat/lon.
+//
+// Thread-safety: handle() is called concurrently from connection threads;
+// the site holds no mutable state of its own besides atomics.
+
+#include <atomic>
+#include <memory>
+#include <string>
+
+#include "fleet.h"
+#include "http_server.h"
+#include "tile_source.h"
+
+namespace acomms::cli::geov {
+
+struct SiteOptions {
+  std::string token;        // empty: none needed
+  std::string tile_url;     // a tile URL template for the page, or empty
+  std::string attribution;  // shown under the tiles
+  std::shared_ptr<MbTiles> mbtiles;
+  double kml_refresh_s = 5;
+  double heartbeat_s = 15;  // an idle event stream's keep-alive (and dead-viewer check)
+};
+
+class MapSite {
+ public:
+  MapSite(Fleet& fleet, SiteOptions options);
+  void handle(const HttpRequest& request, HttpResponder& responder);
+  int open_streams() const { return open_streams_.load(); }
+
+ private:
+  bool authorized(const HttpRequest& request) const;
+  void events(const HttpRequest& request, HttpResponder& responder);
+  void history(const HttpRequest& request, HttpResponder& responder, bool kml);
+  void live_kml(HttpResponder& responder);
+  void network_link(const HttpRequest& request, HttpResponder& responder);
+  void tile(const std::string& path, HttpResponder& responder);
+
+  Fleet& fleet_;
+  SiteOptions options_;
+  std::atomic<int> open_streams_{0};
+};
+
+}  // namespace acomms::cli::geov

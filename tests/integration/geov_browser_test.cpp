@@ -1,0 +1,420 @@
+// The operator's map in a real browser (issue 33): two vehicles (nodes 1
+// and 2) fed navigation through the API and a topside (node 3) that
+// receives their position telemetry, three real acommsd processes on the
+// loopback sim channel; `acommsctl geov serve` follows the topside; Debian's
+// chromium, headless and unable to resolve any host but the loopback's,
+// opens the page through chromedriver (webdriver.h).
+//
+// It checks: both vehicles' markers and tracks are drawn and move as new
+// positions arrive; the map server restarts and the page reconnects by
+// itself and ends holding every position (no gap); every resource the page loaded came from the map
+// server; playback of the last minutes runs to its end with every
+// position of the period drawn; the NetworkLink and the history KML parse
+// as KML 2.2 and hold every position the topside's Track holds. A
+// screenshot is kept as geov_map.png beside this test's binary.
+//
+// Real time, bounded: the telemetry travels in 2.5 s TDMA slots; the whole
+// test takes about 40 s. Skipped, with one message, only when chromium or
+// chromedriver is not installed (CI installs both).
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <thread>
+
+#include <google/protobuf/util/json_util.h>
+
+#include "daemon_harness.h"
+#include "util/seconds.h"
+#include "webdriver.h"
+
+namespace acomms::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+using google::protobuf::Value;
+
+constexpr int kTopside = 3;
+const std::vector<int> kNodes = {1, 2, kTopside};
+
+std::string name(int id) { return id == kTopside ? "topside" : "vehicle" + std::to_string(id); }
+
+// Where vehicle `id` is at `s` seconds into the test: circles of 60 m and
+// 90 m around two points, so that both markers move every second.
+std::pair<double, double> track_at(int id, double s) {
+  const double r = id == 1 ? 60 : 90, cx = id == 1 ? -80 : 120, w = 2 * M_PI / 120;
+  return {cx + r * std::cos(w * s + id), 40 + r * std::sin(w * s + id)};
+}
+
+std::string http_get(int port, const std::string& target, int* status = nullptr) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  timeval tv{10, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+  std::string response;
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0) {
+    const std::string request = "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\n\r\n";
+    ::send(fd, request.data(), request.size(), MSG_NOSIGNAL);
+    char chunk[65536];
+    ssize_t n;
+    while ((n = ::recv(fd, chunk, sizeof chunk, 0)) > 0) response.append(chunk, static_cast<std::size_t>(n));
+  }
+  ::close(fd);
+  if (status) *status = response.size() > 12 ? std::stoi(response.substr(9, 3)) : 0;
+  const std::size_t head = response.find("\r\n\r\n");
+  return head == std::string::npos ? "" : response.substr(head + 4);
+}
+
+Value parse_json(const std::string& text) {
+  Value value;
+  EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(text, &value).ok()) << text.substr(0, 300);
+  return value;
+}
+
+const Value& field(const Value& v, const std::string& key) { return v.struct_value().fields().at(key); }
+
+// Progress on stdout, so that a slow CI run shows where its time went.
+void step(const std::string& what) {
+  static const auto start = std::chrono::steady_clock::now();
+  std::printf("[geov %5.1f s] %s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+              what.c_str());
+  std::fflush(stdout);
+}
+
+class GeovBrowser : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string why;
+    browser_ = WebDriver::find_browser(why);
+    if (!browser_) GTEST_SKIP() << why;
+    dir_ = fs::path("/tmp") / ("acomms-geov-" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    std::map<int, int> port;
+    for (int id : kNodes) port[id] = free_udp_port();
+    for (int id : kNodes) {
+      std::ofstream config(dir_ / (name(id) + ".conf"));
+      config << DaemonConfig{.data_dir = dir_ / name(id), .unix_socket = socket(id)}.text()
+             << "driver { name: \"sim\" modem_id: " << id << " sim { listen: \"127.0.0.1:" << port[id] << "\"";
+      for (int other : kNodes) {
+        if (other != id) config << " peers: \"127.0.0.1:" << port[other] << "\"";
+      }
+      config << " } }\nmac { name: \"fixed\"";
+      for (int slot : kNodes) config << " slot { src: " << slot << " rate: 5 seconds: 2.5 }";
+      config << " max_range_m: 400 }\n"
+             << "telemetry { tau_s: 1 ttl_s: 600 datum { lat: 41.52 lon: -70.67 }"
+             << (id == kTopside ? "" : " receiver: 3") << " }\n";
+    }
+    for (int id : kNodes) {
+      daemons_[id] = std::make_unique<ChildProcess>(
+          ACOMMSD_BINARY, std::vector<std::string>{"--config", (dir_ / (name(id) + ".conf")).string()},
+          (dir_ / name(id)).string());
+    }
+    for (int id : kNodes) ASSERT_TRUE(wait_serving(*daemons_[id], socket(id))) << daemons_[id]->stderr_text();
+    t0_ = util::unix_seconds_now();
+    last_fix_[1] = 0;  // both entries made before the feeders write them
+    last_fix_[2] = 0;
+    for (int id : {1, 2}) feeders_.emplace_back([this, id] { feed(id); });
+  }
+
+  void TearDown() override {
+    stop_feeding();
+    if (map_ && map_->running()) {
+      map_->signal(SIGTERM);
+      EXPECT_EQ(map_->wait(10s), std::optional<int>(0)) << map_->stderr_text();
+    }
+    for (auto& [id, daemon] : daemons_) {
+      if (daemon->running()) {
+        daemon->signal(SIGTERM);
+        daemon->wait(15s);
+      }
+    }
+    if (!HasFailure() && !dir_.empty()) fs::remove_all(dir_);
+  }
+
+  std::string socket(int id) const { return (dir_ / (name(id) + ".sock")).string(); }
+
+  // Navigation as a vehicle's computer gives it: a fix every 0.25 s, now.
+  void feed(int id) {
+    grpc::ClientContext context;
+    v1::SubmitNavigationResponse response;
+    auto stub = api(socket(id));
+    auto writer = stub->SubmitNavigation(&context, &response);
+    while (!stop_.load()) {
+      const double now = util::unix_seconds_now();
+      const auto [x, y] = track_at(id, now - t0_);
+      v1::NavigationFix fix;
+      fix.set_time(now);
+      fix.mutable_local()->set_x(x);
+      fix.mutable_local()->set_y(y);
+      fix.set_depth(10 + 5 * id);
+      if (!writer->Write(fix)) break;
+      last_fix_[id] = now;
+      std::this_thread::sleep_for(250ms);
+    }
+    writer->WritesDone();
+    writer->Finish();
+  }
+  void stop_feeding() {
+    stop_ = true;
+    for (auto& feeder : feeders_) {
+      if (feeder.joinable()) feeder.join();
+    }
+  }
+
+  v1::TrackResponse track(int src) {
+    grpc::ClientContext context;
+    v1::TrackRequest request;
+    request.set_src(src);
+    v1::TrackResponse response;
+    api(socket(kTopside))->Track(&context, request, &response);
+    return response;
+  }
+
+  // The page's own account of itself (geov.js: window.geov.summary()).
+  Value summary(WebDriver& browser) { return parse_json(browser.execute("return JSON.stringify(geov.summary());").string_value()); }
+  static const Value* vehicle(const Value& s, int src) {
+    for (const Value& v : field(s, "vehicles").list_value().values()) {
+      if (field(v, "src").number_value() == src) return &v;
+    }
+    return nullptr;
+  }
+
+  std::string kml_json(const std::string& kml, const std::string& label) {
+    const fs::path file = dir_ / (label + ".kml");
+    std::ofstream(file) << kml;
+    RunResult r = run("/usr/bin/python3", {ACOMMS_SOURCE_DIR "/tests/integration/kml_positions.py", file.string()},
+                      (dir_ / ("parse-" + label)).string());
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    return r.out;
+  }
+
+  std::optional<std::pair<std::string, std::string>> browser_;
+  fs::path dir_;
+  std::map<int, std::unique_ptr<ChildProcess>> daemons_;
+  std::unique_ptr<ChildProcess> map_;
+  std::vector<std::thread> feeders_;
+  std::atomic<bool> stop_{false};
+  std::map<int, std::atomic<double>> last_fix_{};
+  double t0_ = 0;
+};
+
+TEST_F(GeovBrowser, BothVehiclesMoveLivePlayBackAndExportAsKml) {
+  const auto started = std::chrono::steady_clock::now();
+  map_ = std::make_unique<ChildProcess>(
+      ACOMMSCTL_BINARY,
+      std::vector<std::string>{"--socket", socket(kTopside), "geov", "serve", "--listen", "127.0.0.1:0", "--poll", "0.5"},
+      (dir_ / "geov").string());
+  std::smatch match;
+  const std::regex serving("serving http://127\\.0\\.0\\.1:([0-9]+)/");
+  ASSERT_TRUE(wait_until([&] { const std::string err = map_->stderr_text(); return std::regex_search(err, match, serving); }, 10s))
+      << map_->stderr_text();
+  const std::string err = map_->stderr_text();
+  std::regex_search(err, match, serving);
+  const int port = std::stoi(match[1]);
+  const std::string origin = "http://127.0.0.1:" + std::to_string(port) + "/";
+
+  // The page's size: everything it loads.
+  std::size_t page_bytes = 0;
+  for (const char* asset : {"/", "/geov.js", "/geov.css", "/leaflet.js", "/leaflet.css"}) {
+    int status = 0;
+    page_bytes += http_get(port, asset, &status).size();
+    EXPECT_EQ(status, 200) << asset;
+  }
+  RecordProperty("page_bytes", static_cast<int>(page_bytes));
+
+  step("starting chromium");
+  WebDriver browser(browser_->first, browser_->second, dir_);
+  step("opening " + origin);
+  browser.navigate(origin);
+  const double load_ms = browser.execute(
+      "const n = performance.getEntriesByType('navigation')[0]; return n.loadEventEnd - n.startTime;").number_value();
+  RecordProperty("page_load_ms", static_cast<int>(load_ms));
+  std::printf("page: %zu bytes, loaded in %.0f ms\n", page_bytes, load_ms);
+
+  step("waiting for both vehicles");
+  // 1. Both vehicles drawn: a marker and a track of two positions or more.
+  Value first;
+  ASSERT_TRUE(wait_until(
+      [&] {
+        first = summary(browser);
+        for (int src : {1, 2}) {
+          const Value* v = vehicle(first, src);
+          if (!v || field(*v, "marker").has_null_value() || field(*v, "drawn").number_value() < 2) return false;
+        }
+        return true;
+      },
+      30s, 250ms))
+      << browser.execute("return JSON.stringify(geov.summary());").string_value() << "\n" << map_->stderr_text();
+  EXPECT_EQ(browser.execute("return document.querySelectorAll('.geov-marker').length;").number_value(), 2);
+  // Both tracks drawn in the view (Leaflet leaves a path outside it empty).
+  EXPECT_TRUE(wait_until(
+      [&] {
+        return browser.execute("return [...document.querySelectorAll('path.geov-track')].filter(p => (p.getAttribute('d') || '').length > 10).length;")
+                   .number_value() == 2;
+      },
+      5s, 200ms));
+  EXPECT_EQ(field(first, "mode").string_value(), "live");
+  // The panel's table: a row per vehicle (redrawn every second).
+  EXPECT_TRUE(wait_until(
+      [&] { return browser.execute("return document.querySelectorAll('#vehicles tbody tr').length;").number_value() == 2; },
+      3s, 200ms));
+
+  step("waiting for both to move");
+  // 2. They move as new positions arrive, pushed to the page (no reload).
+  ASSERT_TRUE(wait_until(
+      [&] {
+        const Value now = summary(browser);
+        for (int src : {1, 2}) {
+          const Value& a = *vehicle(first, src);
+          const Value* b = vehicle(now, src);
+          if (field(*b, "positions").number_value() <= field(a, "positions").number_value()) return false;
+          if (field(*b, "drawn").number_value() <= field(a, "drawn").number_value()) return false;
+          const auto& ma = field(a, "marker").list_value().values();
+          const auto& mb = field(*b, "marker").list_value().values();
+          if (ma[0].number_value() == mb[0].number_value() && ma[1].number_value() == mb[1].number_value()) return false;
+        }
+        return field(now, "updates").number_value() > 0;
+      },
+      25s, 250ms))
+      << browser.execute("return JSON.stringify(geov.summary());").string_value();
+
+  // 2b. The map server restarts: the page reconnects by itself, is told
+  // its ids are of the old server, reloads the snapshot and goes on live.
+  step("restarting the map server");
+  const Value before_restart = summary(browser);
+  map_->signal(SIGTERM);
+  ASSERT_EQ(map_->wait(10s), std::optional<int>(0)) << map_->stderr_text();
+  map_ = std::make_unique<ChildProcess>(
+      ACOMMSCTL_BINARY,
+      std::vector<std::string>{"--socket", socket(kTopside), "geov", "serve", "--listen",
+                               "127.0.0.1:" + std::to_string(port), "--poll", "0.5"},
+      (dir_ / "geov-2").string());
+  ASSERT_TRUE(wait_until(
+      [&] {
+        const Value now = summary(browser);
+        if (field(now, "resets").number_value() < 1 || !field(now, "connected").bool_value()) return false;
+        for (int src : {1, 2}) {
+          if (field(*vehicle(now, src), "positions").number_value() <=
+              field(*vehicle(before_restart, src), "positions").number_value()) {
+            return false;
+          }
+        }
+        return true;
+      },
+      25s, 250ms))
+      << browser.execute("return JSON.stringify(geov.summary());").string_value() << "\n" << map_->stderr_text();
+
+  // 3. Nothing came from anywhere but the map server.
+  const Value resources = browser.execute("return performance.getEntriesByType('resource').map(e => e.name);");
+  EXPECT_GE(resources.list_value().values_size(), 4);
+  for (const Value& r : resources.list_value().values()) EXPECT_EQ(r.string_value().rfind(origin, 0), 0u) << r.string_value();
+
+  step("playback");
+  // 4. The last 5 minutes played back at 60x: to the end, every position drawn.
+  browser.execute("document.getElementById('pb-minutes').value = '5'; document.getElementById('pb-speed').value = '60'; "
+                  "document.getElementById('pb-play').click(); return true;");
+  ASSERT_TRUE(wait_until([&] { return field(summary(browser), "mode").string_value() == "playback"; }, 5s));
+  ASSERT_TRUE(wait_until(
+      [&] {
+        const Value now = summary(browser);
+        const Value& pb = field(now, "playback");
+        return !field(pb, "playing").bool_value() && field(pb, "t").number_value() >= field(pb, "to").number_value();
+      },
+      15s, 250ms))
+      << browser.execute("return JSON.stringify(geov.summary());").string_value();
+  const Value played = summary(browser);
+  for (int src : {1, 2}) {
+    const double drawn = field(*vehicle(played, src), "drawn").number_value();
+    EXPECT_GE(drawn, field(*vehicle(first, src), "drawn").number_value()) << src;
+    EXPECT_GE(drawn, 2) << src;
+  }
+  browser.execute("document.getElementById('pb-live').click(); return true;");
+  EXPECT_EQ(field(summary(browser), "mode").string_value(), "live");
+  const std::string png = browser.screenshot_png();
+  ASSERT_EQ(png.substr(1, 3), "PNG");
+  std::ofstream(fs::path(GEOV_OUTPUT_DIR) / "geov_map.png", std::ios::binary) << png;
+
+  step("KML");
+  // 5. KML: the vehicles stop; once the topside and the map hold the same
+  // track, the NetworkLink's document and the history hold every position.
+  stop_feeding();
+  std::map<int, v1::TrackResponse> tracks;
+  ASSERT_TRUE(wait_until(
+      [&] {
+        for (int src : {1, 2}) {
+          tracks[src] = track(src);
+          const int n = tracks[src].positions_size();
+          if (n == 0 || tracks[src].positions(n - 1).time() < std::floor(last_fix_[src].load())) return false;
+        }
+        const Value history = parse_json(http_get(port, "/api/history"));
+        for (const Value& v : field(history, "vehicles").list_value().values()) {
+          const int src = static_cast<int>(field(v, "src").number_value());
+          if (field(v, "track").list_value().values_size() != tracks[src].positions_size()) return false;
+        }
+        return true;
+      },
+      25s, 500ms));
+  // The page holds every position, through the server's restart: no gap.
+  EXPECT_TRUE(wait_until(
+      [&] {
+        const Value now = summary(browser);
+        for (int src : {1, 2}) {
+          if (field(*vehicle(now, src), "positions").number_value() != tracks[src].positions_size()) return false;
+        }
+        return true;
+      },
+      5s, 200ms))
+      << browser.execute("return JSON.stringify(geov.summary());").string_value();
+  const Value link = parse_json(kml_json(http_get(port, "/kml/network.kml"), "network"));
+  ASSERT_EQ(field(link, "hrefs").list_value().values_size(), 1);
+  const std::string href = field(link, "hrefs").list_value().values(0).string_value();
+  ASSERT_EQ(href, origin + "kml/live.kml");
+  const Value live = parse_json(kml_json(http_get(port, "/kml/live.kml"), "live"));
+  const Value history = parse_json(kml_json(http_get(port, "/kml/history.kml"), "history"));
+  for (int src : {1, 2}) {
+    const v1::TrackResponse& t = tracks[src];
+    const auto& line = field(field(live, "lines"), "node " + std::to_string(src) + " track").list_value();
+    ASSERT_EQ(line.values_size(), t.positions_size()) << src;
+    std::map<double, std::vector<double>> stamped;
+    for (const Value& s : field(history, "stamped").list_value().values()) {
+      if (s.list_value().values(0).string_value() != "node " + std::to_string(src)) continue;
+      stamped[s.list_value().values(1).number_value()] = {s.list_value().values(2).number_value(),
+                                                          s.list_value().values(3).number_value(),
+                                                          s.list_value().values(4).number_value()};
+    }
+    ASSERT_EQ(stamped.size(), static_cast<std::size_t>(t.positions_size())) << src;
+    // KML carries 10 significant digits (kml.h): 1e-8 degree, about 1 mm,
+    // against positions on a 1 m grid.
+    constexpr double kDegrees = 1e-8;
+    for (int i = 0; i < t.positions_size(); ++i) {
+      const telemetry::Position& p = t.positions(i);
+      const auto& l = line.values(i).list_value();
+      EXPECT_NEAR(l.values(0).number_value(), p.lon(), kDegrees);
+      EXPECT_NEAR(l.values(1).number_value(), p.lat(), kDegrees);
+      ASSERT_TRUE(stamped.count(p.time())) << src << " " << p.time();
+      EXPECT_NEAR(stamped[p.time()][0], p.lon(), kDegrees);
+      EXPECT_NEAR(stamped[p.time()][1], p.lat(), kDegrees);
+      EXPECT_NEAR(stamped[p.time()][2], -p.depth(), 1e-9);
+    }
+    RecordProperty("positions_node" + std::to_string(src), t.positions_size());
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  RecordProperty("browser_test_seconds", static_cast<int>(seconds));
+  EXPECT_LT(seconds, 60);
+}
+
+}  // namespace
+}  // namespace acomms::testing
