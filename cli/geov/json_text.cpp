@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "output.h"
+
 namespace acomms::cli::geov {
 
 std::string json_number(double value) {
@@ -13,25 +15,19 @@ std::string json_number(double value) {
 }
 
 std::string json_string(std::string_view text) {
-  std::string out = "\"";
-  for (unsigned char c : text) {
+  // acommsctl's one JSON quoting (output.h), then <, > and & as \u escapes
+  // too, so that a string is also safe inside the page's <script>. Neither
+  // appears inside an escape json_quote writes, so the pass is exact.
+  std::string out;
+  for (char c : json_quote(std::string(text))) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (c < 0x20 || c == '<' || c == '>' || c == '&') {  // also safe inside <script>
-          char escape[8];
-          std::snprintf(escape, sizeof escape, "\\u%04x", c);
-          out += escape;
-        } else {
-          out.push_back(static_cast<char>(c));
-        }
+      case '<': out += "\\u003c"; break;
+      case '>': out += "\\u003e"; break;
+      case '&': out += "\\u0026"; break;
+      default: out.push_back(c);
     }
   }
-  return out + "\"";
+  return out;
 }
 
 std::string xml_text(std::string_view text) {
