@@ -7,6 +7,7 @@
 
 #include "core/systemd_notify.h"
 #include "mac/mac_factory.h"
+#include "node/auth_setup.h"
 #include "node/codec_setup.h"
 #include "service/position_message.h"
 
@@ -61,6 +62,9 @@ void Daemon::start() {
   codec_ = make_codec(config_.dccl());
   // Before the queues restore: messages of these types are in the journal.
   DefinitionLoader::load_recorded(*codec_, api_definitions);
+  // Before the queues restore: stored messages of these types are sealed
+  // as they are queued again.
+  authenticator_ = make_authenticator(config_.auth(), *codec_);
   try {
     queues_ = std::make_unique<queue::QueueManager>(*codec_, config_.queue(),
                                                     static_cast<int32_t>(config_.driver().modem_id()),
@@ -68,6 +72,7 @@ void Daemon::start() {
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("queue config: ") + e.what());
   }
+  authenticate_queues(config_.auth(), *queues_);
   queues_->restore();
   definitions_ = std::make_unique<DefinitionLoader>(
       *codec_, *queues_, *writer_, (std::filesystem::path(config_.data_dir()) / "definitions").string());
@@ -117,6 +122,10 @@ Daemon::~Daemon() { stop(); }
 
 void Daemon::reload_tls() {
   if (server_) server_->reload_tls();
+}
+
+void Daemon::reload_keyring() {
+  if (authenticator_) node::reload_keyring(config_.auth(), *authenticator_);
 }
 
 // Driver, MAC and the LinkController that binds them to the queues (the

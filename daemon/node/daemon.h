@@ -53,6 +53,9 @@ class Daemon {
 
   // SIGHUP: re-reads the API's TLS certificates (logs the outcome).
   void reload_tls();
+  // SIGHUP: re-reads the auth keyring (logs the outcome; a keyring that
+  // does not load leaves the old keys in use). Nothing without auth.
+  void reload_keyring();
 
  private:
   // The constructor's work, in the order of the file comment.
@@ -68,6 +71,8 @@ class Daemon {
   std::unique_ptr<queue::SqliteJournal> journal_;
   std::unique_ptr<queue::EventLogReader> events_;
   std::unique_ptr<dccl::Codec> codec_;
+  // Authenticated types' keys (null without auth); SIGHUP replaces them.
+  std::shared_ptr<dccl::MessageAuthenticator> authenticator_;
   // Owned by the core thread once it runs.
   std::unique_ptr<queue::QueueManager> queues_;
   std::unique_ptr<DefinitionLoader> definitions_;

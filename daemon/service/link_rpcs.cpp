@@ -48,6 +48,10 @@ grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatu
     counters->set_duplicates_dropped(node_.queues.duplicates());
     counters->set_malformed_frames(node_.queues.malformed_frames());
     counters->set_stale_refused(node_.queues.stale_refused());
+    const queue::AuthRefusals& refused = node_.queues.auth_refusals();
+    counters->set_auth_failed(refused.auth_failed);
+    counters->set_auth_replayed(refused.replayed);
+    counters->set_auth_stale(refused.stale);
     const link::DriverCounters lost = node_.link.driver.counters();
     counters->set_lost_half_duplex(lost.lost_half_duplex);
     counters->set_lost_collision(lost.lost_collision);
