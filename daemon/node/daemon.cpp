@@ -103,12 +103,19 @@ void Daemon::start() {
   identity.driver = config_.driver().name();
   identity.mac = config_.mac().name();
   identity.modem_id = config_.driver().modem_id();
+  try {
+    roles_ = std::make_unique<service::ApiRoles>(config_.auth());
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
   api_ = std::make_unique<service::AcommsService>(
-      std::move(identity), service::Node{*codec_, *queues_, *submitter_, *core_, {*mac_, *driver_, *link_},
-                                         *definitions_, *events_, subscribers_, *telemetry_, *track_});
+      std::move(identity),
+      service::Node{*codec_, *queues_, *submitter_, *core_, {*mac_, *driver_, *link_}, *definitions_, *events_,
+                    subscribers_, *telemetry_, *track_},
+      *roles_);
 
   gram_api_ = std::make_unique<service::GramService>(*gram_.pool, *gram_.environment,
-                                                     save_environment_to(*writer_));
+                                                     save_environment_to(*writer_), *roles_);
 
   server_ = std::make_unique<service::GrpcServer>(
       service::endpoints_of(config_.grpc()),

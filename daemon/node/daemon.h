@@ -100,6 +100,8 @@ class Daemon {
   core::NodePosition node_position_;
   std::unique_ptr<telemetry::TelemetryNode> telemetry_;
   std::unique_ptr<telemetry::TrackReader> track_;
+  // Who may call what on the API (config auth); outlives both services.
+  std::unique_ptr<service::ApiRoles> roles_;
   std::unique_ptr<service::AcommsService> api_;
   // GRAM: the environment the vehicle knows and the model worker pool.
   GramParts gram_;

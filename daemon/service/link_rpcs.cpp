@@ -16,8 +16,9 @@ v1::MacSlot to_proto(const mac::Slot& slot) {
 
 }  // namespace
 
-grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatusRequest*,
+grpc::Status AcommsService::LinkStatus(grpc::ServerContext* context, const v1::LinkStatusRequest*,
                                        v1::LinkStatusResponse* response) {
+  if (grpc::Status denied = allowed(*context, "LinkStatus"); !denied.ok()) return denied;
   response->set_modem_id(identity_.modem_id);
   response->set_mac(identity_.mac.empty() ? "none" : identity_.mac);
   node_.core.call([&] {
@@ -62,8 +63,9 @@ grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatu
   return grpc::Status::OK;
 }
 
-grpc::Status AcommsService::SetCycle(grpc::ServerContext*, const v1::SetCycleRequest* request,
+grpc::Status AcommsService::SetCycle(grpc::ServerContext* context, const v1::SetCycleRequest* request,
                                      v1::SetCycleResponse* response) {
+  if (grpc::Status denied = allowed(*context, "SetCycle"); !denied.ok()) return denied;
   // The MAC says whether its cycle can be set: the service names no MAC.
   if (std::string refusal = node_.link.mac.cycle_not_settable_reason(); !refusal.empty()) {
     return {grpc::StatusCode::FAILED_PRECONDITION, refusal};

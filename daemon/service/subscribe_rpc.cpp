@@ -71,6 +71,7 @@ bool is_driver_specific_type(const std::string& type) {
 
 grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::SubscribeRequest* request,
                                       grpc::ServerWriter<v1::ReceivedMessage>* writer) {
+  if (grpc::Status denied = allowed(*context, "Subscribe"); !denied.ok()) return denied;
   Subscription::Filter filter;
   {
     auto stable = node_.submitter.types_stable();

@@ -97,10 +97,16 @@ class RogueRadio {
   }
 
   // Sends `envelope` as node 3, from x = 150 m, starting now, to `port`.
+  // Short (10 ms), so that it seldom overlaps the nodes' own packets: the
+  // channel is busy with one every slot.
   void send(drivers::SimEnvelope envelope, int port) {
     envelope.sender = 3;
+    // The rogue's modem sends the recorded frame as its own transmission
+    // (DATA under another node's id would be a poll of that node).
+    envelope.transmission.set_src(3);
+    envelope.duration = std::chrono::milliseconds(10);
     envelope.position = {150, 0, 0};
-    envelope.start = core::Clock::time_point(std::chrono::duration_cast<core::Clock::duration>(
+    envelope.start = core::Clock::time_point(std::chrono::duration_cast<core::Clock::time_point::duration>(
         std::chrono::system_clock::now().time_since_epoch()));
     const std::string bytes = drivers::encode(envelope);
     sockaddr_in to{};
