@@ -21,8 +21,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -313,6 +315,59 @@ TEST_F(AuthRogueTest, ForgedFlippedAndReplayedCommandsAreRefusedAndRealOnesArriv
   EXPECT_EQ(after.auth_replayed(), 1u);
   EXPECT_GE(after.auth_failed(), 1u);
   EXPECT_EQ(after.auth_stale(), 0u);
+}
+
+
+// A fleet rolls from key 1 to key 2 without a restart: the vehicle's keyring
+// gains key 2 with key 1 accepted until a time a few seconds ahead, the
+// topside moves to signing with key 2, each re-read on SIGHUP; a node still
+// signing with key 1 (the "rogue" daemon here, given the old key) is heard
+// during the overlap and refused after it. Real time: `until` is a wall-clock
+// time, and SIGHUP needs real processes.
+TEST_F(AuthRogueTest, KeyRollAcceptsBothKeysDuringTheOverlapAndOnlyTheNewAfter) {
+  const std::string key1 = "key 1 000102030405060708090a0b0c0d0e0f";
+  const std::string key2 = "key 2 00112233445566778899aabbccddeeff00112233445566778899aabbccddeeff";
+  keyring("vehicle.keyring", key1 + "\nsign 1\n");
+  keyring("topside.keyring", key1 + "\nsign 1\n");
+  keyring("late.keyring", key1 + "\nsign 1\n");
+  write_config(1, "vehicle.keyring", peer(port_[2]) + peer(port_[3]));
+  write_config(2, "topside.keyring", peer(port_[1]) + peer(port_[3]));
+  write_config(3, "late.keyring", peer(port_[1]) + peer(port_[2]));
+  start(1);
+  start(2);
+  start(3);
+  StreamSubscriber vehicle(socket(1), "example.Command");
+
+  // Key 1 is accepted until 25 s from now.
+  const std::time_t until = std::time(nullptr) + 25;
+  char when[32];
+  std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&until));
+  keyring("vehicle.keyring", key1 + " until " + when + "\n" + key2 + "\nsign 1\n");
+  daemons_[1]->signal(SIGHUP);
+  ASSERT_TRUE(wait_until([&] { return daemons_[1]->stderr_text().find("auth: keyring reloaded: keys 1, 2") !=
+                                      std::string::npos; }, 10s, 100ms))
+      << daemons_[1]->stderr_text();
+  keyring("topside.keyring", key2 + "\nsign 2\n");
+  daemons_[2]->signal(SIGHUP);
+  ASSERT_TRUE(wait_until([&] { return daemons_[2]->stderr_text().find("signing with 2") != std::string::npos; },
+                         10s, 100ms));
+
+  // The overlap: key 2 (topside) and key 1 (the late node) both arrive.
+  ASSERT_GT(submit_command(2, 1), 0);
+  ASSERT_GT(submit_command(3, 2), 0);
+  EXPECT_TRUE(vehicle.wait_for([](const auto& got) { return got.size() >= 2; }, 15s)) << daemons_[1]->stderr_text();
+  ASSERT_LT(std::time(nullptr), until) << "the overlap ended before both arrived: the machine is too slow";
+
+  // After `until`, key 1 is refused; key 2 still arrives.
+  ASSERT_TRUE(wait_until([&] { return std::time(nullptr) > until + 1; }, 30s, 200ms));
+  ASSERT_GT(submit_command(3, 3), 0);
+  EXPECT_TRUE(wait_until([&] { return counters(1).auth_failed() >= 1; }, 20s, 200ms)) << daemons_[1]->stderr_text();
+  EXPECT_NE(daemons_[1]->stderr_text().find("key retired 1"), std::string::npos) << daemons_[1]->stderr_text();
+  ASSERT_GT(submit_command(2, 4), 0);
+  EXPECT_TRUE(vehicle.wait_for([](const auto& got) { return got.size() >= 3; }, 20s));
+  std::vector<int> got = seqs(vehicle.received());
+  std::sort(got.begin(), got.end());  // the topside's and the late node's slots come in either order
+  EXPECT_EQ(got, (std::vector<int>{1, 2, 4}));
 }
 
 }  // namespace
