@@ -79,6 +79,13 @@ void print_status(const v1::LinkStatusResponse& link) {
               static_cast<unsigned long long>(c.malformed_frames()),
               static_cast<unsigned long long>(c.lost_half_duplex()),
               static_cast<unsigned long long>(c.lost_collision()));
+  // Authenticated types' refusals (config auth; zero without it).
+  {
+    std::printf("auth refused: auth_failed %llu, replayed %llu, stale %llu\n",
+                static_cast<unsigned long long>(c.auth_failed()),
+                static_cast<unsigned long long>(c.auth_replayed()),
+                static_cast<unsigned long long>(c.auth_stale()));
+  }
   if (!c.bad_input().empty()) {
     // Sorted by kind: a map field's order is not defined.
     std::map<std::string, uint64_t> kinds(c.bad_input().begin(), c.bad_input().end());

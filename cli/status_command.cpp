@@ -17,6 +17,9 @@ void print_human(const v1::Status& status) {
   std::printf("  driver:          %s (modem id %u)\n", status.driver().c_str(), status.modem_id());
   std::printf("  mac:             %s\n", status.mac().c_str());
   std::printf("  dccl types:      %d\n", status.dccl_types());
+  // The role this client has on the API (config auth): what it may call.
+  std::printf("  your role:       %s (%s)\n", status.caller_role().empty() ? "none" : status.caller_role().c_str(),
+              status.caller().c_str());
 }
 
 void run_status(const GlobalOptions& options) {
@@ -33,7 +36,7 @@ void run_status(const GlobalOptions& options) {
 
 void add_status_command(CLI::App& app, const GlobalOptions& options) {
   CLI::App* status = app.add_subcommand(
-      "status", "Show the daemon's version, uptime, data directory, driver, MAC and how many DCCL types it has");
+      "status", "Show the daemon's version, uptime, data directory, driver, MAC, how many DCCL types it has and your role on its API");
   status->footer("Example:\n  acommsctl status --json");
   status->callback([&options] { run_status(options); });
 }

@@ -41,12 +41,14 @@ sigset_t block_handled_signals() {
   return signals;
 }
 
-// Serves until SIGINT or SIGTERM; each SIGHUP re-reads the certificates.
+// Serves until SIGINT or SIGTERM; each SIGHUP re-reads the certificates and
+// the auth keyring.
 int wait_for_stop(acomms::node::Daemon& daemon, const sigset_t& signals) {
   int signal_number = 0;
   while (sigwait(&signals, &signal_number) == 0 && signal_number == SIGHUP) {
-    spdlog::info("received SIGHUP, reloading TLS certificates");
+    spdlog::info("received SIGHUP, reloading TLS certificates and the auth keyring");
     daemon.reload_tls();
+    daemon.reload_keyring();
   }
   return signal_number;
 }

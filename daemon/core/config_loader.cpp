@@ -5,6 +5,7 @@
 #include <sys/un.h>
 
 #include <cctype>
+#include <cmath>
 #include <charconv>
 #include <fstream>
 #include <optional>
@@ -202,6 +203,21 @@ void validate(const v1::Config& config, const pb::TextFormat::ParseInfoTree& tre
     int id = config.dccl().crypto_exempt_ids(i);
     if (id < 0 || id > 32767) {
       fail({"dccl", "crypto_exempt_ids"}, std::to_string(id) + " is not a DCCL id (0 to 32767)", i);
+    }
+  }
+  if (config.auth().has_tag_bits()) {
+    const uint32_t bits = config.auth().tag_bits();
+    if (bits < 32 || bits > 64 || bits % 8 != 0) fail({"auth", "tag_bits"}, "must be 32 to 64, a multiple of 8");
+  }
+  if (config.auth().type_size() > 0 && config.auth().keyring_file().empty()) {
+    fail({"auth", "type"}, "authenticated types need auth.keyring_file");
+  }
+  for (int i = 0; i < config.auth().type_size(); ++i) {
+    const double window = config.auth().type(i).window_s();
+    if (!(window > 0) || !std::isfinite(window)) {
+      fail({"auth", "type"},
+           config.auth().type(i).type() + ": window_s must be more than 0 seconds (0 would refuse every message as stale)",
+           i);
     }
   }
   if (!config.driver().name().empty() && !valid_plugin_name(config.driver().name())) {

@@ -105,6 +105,24 @@ void Codec::set_crypto(std::string_view passphrase, std::set<int> exempt_ids) {
 
 void Codec::clear_crypto() { wire_->clear_crypto(); }
 
+void Codec::set_authentication(std::shared_ptr<const MessageAuthenticator> authenticator,
+                               std::set<std::string> types) {
+  for (const std::string& type : types) {
+    const TypePlan* plan = schema_->find(type);
+    if (plan == nullptr) throw Error(Error::Kind::kSchema, "authenticated type " + type + " is not loaded");
+    // Without an id a receiver cannot tell which messages carry a trailer.
+    if (plan->info.omit_id) throw Error(Error::Kind::kSchema, "authenticated type " + type + " has omit_id");
+  }
+  wire_->set_authentication(std::move(authenticator), std::move(types));
+}
+
+const MessageAuthenticator* Codec::authenticator() const { return wire_->authenticator(); }
+
+bool Codec::authenticated(std::string_view full_name) const {
+  const TypePlan* plan = schema_->find(full_name);
+  return plan != nullptr && wire_->authenticates(plan->info);
+}
+
 void Codec::set_strict(bool strict) { wire_->set_strict(strict); }
 bool Codec::strict() const { return wire_->strict(); }
 

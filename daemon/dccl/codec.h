@@ -44,6 +44,7 @@ class Message;
 
 namespace acomms::dccl {
 
+class MessageAuthenticator;
 class SchemaLoader;
 class WireFormat;
 
@@ -110,6 +111,16 @@ class Codec {
   // exempt_ids stay in clear. An empty passphrase still encrypts.
   void set_crypto(std::string_view passphrase, std::set<int> exempt_ids = {});
   void clear_crypto();
+
+  // Authenticated types (message_auth.h): each message of these loaded
+  // types (full names) carries a key id, send time, counter and tag after
+  // its DCCL bytes; encode() seals it, decode consumes it without checking
+  // it (the receive side calls authenticator()->verify). Throws Error
+  // naming a type that is not loaded or has no id. Null turns it off.
+  void set_authentication(std::shared_ptr<const MessageAuthenticator> authenticator, std::set<std::string> types);
+  // Null when authentication is off.
+  const MessageAuthenticator* authenticator() const;
+  bool authenticated(std::string_view full_name) const;
 
   // Strict mode: encode() throws instead of zeroing out-of-range values,
   // truncating strings/bytes, dropping repeats past max_repeat or encoding a

@@ -64,6 +64,8 @@ std::string WireFormat::encode(const TypePlan& plan, const gp::Message& msg) con
     // The cleartext head (id included) seeds the key stream: see crypto.h.
     cipher_->apply(std::string_view(out).substr(0, head_bytes), out.data() + head_bytes, out.size() - head_bytes);
   }
+  // Encrypt, then tag: the tag covers the body as it goes on the water.
+  if (authenticates(info)) authenticator_->seal(out, clock_());
   return out;
 }
 
@@ -86,13 +88,33 @@ std::unique_ptr<gp::Message> WireFormat::decode(const TypePlan& plan, std::strin
     BitReader body(clear, body_start);
     plan.body.decode(body, msg.get(), ctx);
     body.align();
-    if (consumed) *consumed = body.position() / 8;
+    if (consumed) *consumed = with_trailer(plan.info, bytes, body.position() / 8);
     return msg;
   }
   plan.body.decode(in, msg.get(), ctx);
   in.align();
-  if (consumed) *consumed = in.position() / 8;
+  if (consumed) *consumed = with_trailer(plan.info, bytes, in.position() / 8);
   return msg;
+}
+
+size_t WireFormat::with_trailer(const TypeInfo& info, std::string_view bytes, size_t used) const {
+  if (!authenticates(info)) return used;
+  const size_t trailer = authenticator_->trailer_bytes();
+  if (bytes.size() - used < trailer) {
+    throw decode_error(info.name + ": authentication trailer truncated (" + std::to_string(bytes.size() - used) +
+                       " of " + std::to_string(trailer) + " bytes)");
+  }
+  return used + trailer;
+}
+
+bool WireFormat::authenticates(const TypeInfo& info) const {
+  return authenticator_ != nullptr && authenticated_types_.count(info.name) > 0;
+}
+
+void WireFormat::set_authentication(std::shared_ptr<const MessageAuthenticator> authenticator,
+                                    std::set<std::string> types) {
+  authenticator_ = std::move(authenticator);
+  authenticated_types_ = authenticator_ ? std::move(types) : std::set<std::string>();
 }
 
 int WireFormat::id_of(std::string_view bytes) {

@@ -13,6 +13,11 @@
 //   head: the in_head fields, then zero bits up to a byte boundary
 //   body: the other fields, then zero bits up to a byte boundary;
 //         AES-CTR encrypted (crypto.h) unless crypto is off or the id exempt
+//   auth: for authenticated types only, a fixed-length trailer (key id,
+//         send time, counter, tag: message_auth.h) sealed after encryption;
+//         decode consumes it but does not check it (the receive side does,
+//         with MessageAuthenticator::verify), so that stored messages
+//         still decode after their key retired
 //
 // Thread safety: encode/decode may run concurrently once the settings are
 // made; the set_*() calls must not run concurrently with anything.
@@ -27,6 +32,7 @@
 #include <string_view>
 
 #include "dccl/crypto.h"
+#include "dccl/message_auth.h"
 #include "dccl/type_plan.h"
 
 namespace google::protobuf {
@@ -51,6 +57,10 @@ class WireFormat {
 
   void set_crypto(std::string_view passphrase, std::set<int> exempt_ids);
   void clear_crypto();
+  // Types (full names) whose messages carry the trailer; null turns it off.
+  void set_authentication(std::shared_ptr<const MessageAuthenticator> authenticator, std::set<std::string> types);
+  const MessageAuthenticator* authenticator() const { return authenticator_.get(); }
+  bool authenticates(const TypeInfo& info) const;
   void set_strict(bool strict) { strict_ = strict; }
   bool strict() const { return strict_; }
   // Null restores the system clock.
@@ -58,11 +68,16 @@ class WireFormat {
 
  private:
   bool encrypts(const TypeInfo& info) const;
+  // `used` bytes of DCCL, plus the trailer when info is authenticated.
+  // Throws Error when bytes end inside the trailer.
+  size_t with_trailer(const TypeInfo& info, std::string_view bytes, size_t used) const;
 
   bool strict_ = false;
   std::function<double()> clock_;
   std::optional<BodyCipher> cipher_;
   std::set<int> exempt_ids_;
+  std::shared_ptr<const MessageAuthenticator> authenticator_;
+  std::set<std::string> authenticated_types_;
 };
 
 }  // namespace acomms::dccl

@@ -7,6 +7,7 @@
 
 #include "core/node_links.h"
 #include "core/systemd_notify.h"
+#include "node/auth_setup.h"
 #include "node/codec_setup.h"
 #include "service/position_message.h"
 
@@ -66,11 +67,15 @@ void Daemon::start() {
   codec_ = make_codec(config_.dccl());
   // Before the queues restore: messages of these types are in the journal.
   DefinitionLoader::load_recorded(*codec_, api_definitions);
+  // Before the queues restore: stored messages of these types are sealed
+  // as they are queued again.
+  authenticator_ = make_authenticator(config_.auth(), *codec_);
   try {
     queues_ = std::make_unique<queue::QueueManager>(*codec_, config_.queue(), own_id_, clock_, *journal_);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("queue config: ") + e.what());
   }
+  authenticate_queues(config_.auth(), *queues_);
   queues_->restore();
   definitions_ = std::make_unique<DefinitionLoader>(
       *codec_, *queues_, *writer_, (std::filesystem::path(config_.data_dir()) / "definitions").string());
@@ -104,6 +109,11 @@ void Daemon::start() {
   identity.driver = links_.front()->config().driver().name();
   identity.mac = links_.front()->config().mac().name();
   identity.modem_id = static_cast<uint32_t>(own_id_);
+  try {
+    roles_ = std::make_unique<service::ApiRoles>(config_.auth());
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
   std::vector<service::Link> links;
   for (auto& link : links_) {
     links.push_back({link->name(), link->config().driver().name(), link->config().mac().name(),
@@ -111,10 +121,11 @@ void Daemon::start() {
   }
   api_ = std::make_unique<service::AcommsService>(
       std::move(identity), service::Node{*codec_, *queues_, *submitter_, *core_, std::move(links), *definitions_,
-                                         *events_, subscribers_, *telemetry_, *track_});
+                                         *events_, subscribers_, *telemetry_, *track_},
+      *roles_);
 
   gram_api_ = std::make_unique<service::GramService>(*gram_.pool, *gram_.environment,
-                                                     save_environment_to(*writer_));
+                                                     save_environment_to(*writer_), *roles_);
 
   server_ = std::make_unique<service::GrpcServer>(
       service::endpoints_of(config_.grpc()),
@@ -128,6 +139,10 @@ Daemon::~Daemon() { stop(); }
 
 void Daemon::reload_tls() {
   if (server_) server_->reload_tls();
+}
+
+void Daemon::reload_keyring() {
+  if (authenticator_) node::reload_keyring(config_.auth(), *authenticator_);
 }
 
 // Every link (node/node_link.h) and the choice of link they share.

@@ -55,6 +55,9 @@ class Daemon {
 
   // SIGHUP: re-reads the API's TLS certificates (logs the outcome).
   void reload_tls();
+  // SIGHUP: re-reads the auth keyring (logs the outcome; a keyring that
+  // does not load leaves the old keys in use). Nothing without auth.
+  void reload_keyring();
 
  private:
   // The constructor's work, in the order of the file comment.
@@ -72,6 +75,8 @@ class Daemon {
   std::unique_ptr<queue::SqliteJournal> journal_;
   std::unique_ptr<queue::EventLogReader> events_;
   std::unique_ptr<dccl::Codec> codec_;
+  // Authenticated types' keys (null without auth); SIGHUP replaces them.
+  std::shared_ptr<dccl::MessageAuthenticator> authenticator_;
   // Owned by the core thread once it runs.
   std::unique_ptr<queue::QueueManager> queues_;
   std::unique_ptr<DefinitionLoader> definitions_;
@@ -101,6 +106,8 @@ class Daemon {
   core::NodePosition node_position_;
   std::unique_ptr<telemetry::TelemetryNode> telemetry_;
   std::unique_ptr<telemetry::TrackReader> track_;
+  // Who may call what on the API (config auth); outlives both services.
+  std::unique_ptr<service::ApiRoles> roles_;
   std::unique_ptr<service::AcommsService> api_;
   // GRAM: the environment the vehicle knows and the model worker pool.
   GramParts gram_;

@@ -6,7 +6,10 @@
 // (nothing after them can be found); what came before is kept. Messages for
 // another node are left out unless the queue config is promiscuous; the
 // rest go through the ReceiveFilter (receive_filter.h: stale ones and
-// retransmissions are not passed on). Core thread only.
+// retransmissions are not passed on). Messages of authenticated types
+// (dccl/message_auth.h) must first show a tag that verifies, a stamp inside
+// their window and bytes not accepted before (auth_guard.h). Core thread
+// only.
 
 #include <spdlog/spdlog.h>
 
@@ -31,7 +34,18 @@ std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32
       if (info == nullptr) throw dccl::decode_error("unknown DCCL id " + std::to_string(codec_.id_of(rest)));
       size_t used = 0;
       ReceivedMessage received;
-      received.message = codec_.decode_as(info->name, rest, &used);
+      // Either says so: a type the codec seals but no window was given for
+      // fails closed (every stamp is outside a window of 0).
+      const bool authenticated = codec_.authenticated(info->name) || auth_guard_.covers(info->name);
+      try {
+        received.message = codec_.decode_as(info->name, rest, &used);
+      } catch (const dccl::Error& e) {
+        // A truncated trailer, or bytes that are not this type at all: no
+        // verified tag, so nothing after it can be trusted either.
+        if (!authenticated) throw;
+        auth_guard_.refuse(AuthRefusal::kAuthFailed, info->name, transmission_src, e.what(), now);
+        break;
+      }
       if (used == 0) throw dccl::decode_error(info->name + " used no bytes");
       offset += used;
       received.type = info->name;
@@ -39,6 +53,10 @@ std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32
       auto state_it = by_name_.find(info->name);
       if (state_it == by_name_.end()) continue;
       TypeState& state = *state_it->second;
+      std::optional<dccl::AuthStamp> stamp;
+      if (authenticated && !(stamp = admit_authenticated(info->name, rest.substr(0, used), transmission_src, now))) {
+        continue;  // refused, counted and logged: never reaches a subscriber
+      }
       received.dest = state.roles.destination(*received.message);
       int32_t src = state.roles.source(*received.message);
       received.src = src >= 0 ? src : transmission_src;
@@ -51,8 +69,10 @@ std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32
       JournalMessage as_event;
       as_event.src = received.src;
       as_event.dest = received.dest;
+      if (stamp) auth_guard_.remember(info->name, received.encoded, stamp->sent_s, now);
       emit(state, now, {.kind = QueueEventKind::kReceived, .message = as_event, .encoded = received.encoded,
-                        .link_figures = link_figures});
+                        .link_figures = link_figures,
+                        .auth_sent_s = stamp ? std::optional<uint32_t>(stamp->sent_s) : std::nullopt});
       received.seq = last_received_seq();  // the number emit() just gave it
       out.push_back(std::move(received));
     } catch (const dccl::Error& e) {
@@ -65,6 +85,30 @@ std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32
     }
   }
   return out;
+}
+
+std::optional<dccl::AuthStamp> QueueManager::admit_authenticated(const std::string& type, std::string_view message,
+                                                                int32_t transmission_src, double now) {
+  dccl::AuthStamp stamp;
+  const dccl::MessageAuthenticator* authenticator = codec_.authenticator();
+  const dccl::AuthVerdict verdict =
+      authenticator ? authenticator->verify(message, now, &stamp) : dccl::AuthVerdict::kUnknownKey;
+  if (verdict != dccl::AuthVerdict::kOk) {
+    std::string detail(dccl::to_string(verdict));
+    if (verdict == dccl::AuthVerdict::kUnknownKey || verdict == dccl::AuthVerdict::kKeyRetired) {
+      // The key id is the trailer's first byte (present: not kTruncated).
+      const size_t trailer = authenticator ? authenticator->trailer_bytes() : message.size();
+      detail += " " + std::to_string(static_cast<uint8_t>(message[message.size() - trailer]));
+    }
+    auth_guard_.refuse(AuthRefusal::kAuthFailed, type, transmission_src, detail, now);
+    return std::nullopt;
+  }
+  if (auto why = auth_guard_.judge(type, message, stamp, now)) {
+    std::string detail = "stamped " + std::to_string(static_cast<int64_t>(now) - int64_t{stamp.sent_s}) + " s ago";
+    auth_guard_.refuse(*why, type, transmission_src, detail, now);
+    return std::nullopt;
+  }
+  return stamp;
 }
 
 }  // namespace acomms::queue

@@ -38,6 +38,15 @@ std::vector<QueueEvent> MemoryJournal::received_since(double since) {
   return out;
 }
 
+std::vector<QueueEvent> MemoryJournal::authenticated_since(double sent_since) {
+  std::lock_guard lock(mutex_);
+  std::vector<QueueEvent> out;
+  for (const QueueEvent& event : events_) {
+    if (event.auth_sent_s && *event.auth_sent_s >= sent_since) out.push_back(event);
+  }
+  return out;
+}
+
 std::vector<QueueEvent> MemoryJournal::events() const {
   std::lock_guard lock(mutex_);
   return events_;

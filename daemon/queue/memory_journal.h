@@ -18,6 +18,7 @@ class MemoryJournal final : public MessageJournal {
   void record(const QueueEvent& event) override;
   std::vector<JournalMessage> load() override;
   std::vector<QueueEvent> received_since(double since) override;
+  std::vector<QueueEvent> authenticated_since(double sent_since) override;
   void flush() override {}
   int64_t last_received_seq() override;
   // Runs `committed` at once: memory has nothing to wait for.

@@ -74,6 +74,12 @@ class MessageJournal {
   // after a restart. Called at start-up.
   virtual std::vector<QueueEvent> received_since(double since) = 0;
 
+  // The received messages of authenticated types still remembered in
+  // auth_accepted, stamped at or after `sent_since` (type, encoded and
+  // auth_sent_s set): what the AuthGuard must remember again after a
+  // restart. Called at start-up.
+  virtual std::vector<QueueEvent> authenticated_since(double sent_since) = 0;
+
   // The last received sequence number handed out (0: none yet), read at
   // start-up: the queue continues from it. Numbers are assigned by the
   // queue (QueueEvent::seq) and made durable by record().

@@ -45,6 +45,13 @@ struct QueueEvent {
   // received events logged before migrations/0008_link_figures.sql); an
   // empty string is a LinkFigures whose fields are all default, not none.
   std::optional<std::string> link_figures;
+  // kReceived of an authenticated type (dccl/message_auth.h): its send
+  // time as stamped, Unix seconds. The store keeps (type, encoded) in
+  // auth_accepted with it (migrations/0009_auth_accepted.sql), in the same
+  // transaction as the event, so a replay is recognised after a restart,
+  // and forgets there what was stamped before auth_forget_before.
+  std::optional<uint32_t> auth_sent_s;
+  double auth_forget_before = 0;
 };
 
 struct JournalMessage;

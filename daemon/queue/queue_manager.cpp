@@ -100,6 +100,10 @@ void QueueManager::emit(TypeState& state, double now, const Change& change) {
   event.removes_message = change.removes_message;
   event.encoded = change.encoded;
   if (change.link_figures) event.link_figures.emplace(*change.link_figures);
+  if (change.auth_sent_s) {
+    event.auth_sent_s = change.auth_sent_s;
+    event.auth_forget_before = auth_guard_.forget_before(now);
+  }
   // Numbered here, on the core thread, so numbers follow the order messages
   // are passed on; the journal makes each durable with its event.
   if (kind == QueueEventKind::kReceived) event.seq = ++last_received_seq_;
@@ -118,6 +122,23 @@ void QueueManager::emit(TypeState& state, double now, const Change& change) {
 int64_t QueueManager::take_received_seq() {
   ACOMMS_ASSERT_CORE_THREAD();
   return ++last_received_seq_;
+}
+
+void QueueManager::authenticate(const std::string& type, double window_s) {
+  auto it = by_name_.find(type);
+  if (it == by_name_.end()) throw std::invalid_argument("auth.type " + type + ": no queue of that type");
+  if (!codec_.authenticated(type)) {
+    throw std::invalid_argument("auth.type " + type + ": the codec does not authenticate it");
+  }
+  auth_guard_.add_type(type, window_s);
+  TypeState& state = *it->second;
+  if (state.queue->policy().ttl_s > window_s) {
+    throw std::invalid_argument(fmt::format("auth.type {}: window_s {} is shorter than the queue's ttl_s {}: a "
+                                            "message queued that long would arrive stale; lengthen the window "
+                                            "or shorten the ttl",
+                                            type, window_s, state.queue->policy().ttl_s));
+  }
+  state.auth_window_s = window_s;
 }
 
 void QueueManager::restore() {
@@ -178,6 +199,7 @@ void QueueManager::restore() {
   }
   spdlog::info("queue: {} message{} restored from the store", restored, restored == 1 ? "" : "s");
   receive_filter_.refill(journal_, now);
+  auth_guard_.refill(journal_, now);
 }
 
 double QueueManager::duplicate_window_s() const {
@@ -214,6 +236,15 @@ QueuedMessage QueueManager::prepare_new(const pb::Message& message, double ttl_s
         "queue.duplicate_window_s): a resend after that could be delivered twice; give at most {} or raise "
         "the type's ttl_s on every node",
         type, ttl_s, state.window_s, state.window_s));
+  }
+  // Its stamp is made now: a message still queued past the window arrives
+  // stale.
+  const double effective_ttl = ttl_s > 0 ? ttl_s : state.queue->policy().ttl_s;
+  if (state.auth_window_s > 0 && effective_ttl > state.auth_window_s) {
+    throw TtlTooLongError(fmt::format(
+        "{}: ttl_s {} is longer than the type's authenticated window auth.type.window_s {} s: it would "
+        "arrive stale; give at most {}",
+        type, effective_ttl, state.auth_window_s, state.auth_window_s));
   }
   // Checked before anything is written, so that a refused Submit leaves no
   // trace in the store. Submits already being stored when the queue fills

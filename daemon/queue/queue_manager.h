@@ -35,6 +35,7 @@
 #include "acomms/v1/config.pb.h"
 #include "core/clock.h"
 #include "dccl/codec.h"
+#include "queue/auth_guard.h"
 #include "queue/frame.h"
 #include "queue/message_journal.h"
 #include "queue/queue.h"
@@ -82,6 +83,15 @@ class QueueManager {
   // Submitter::types_changing().
   std::vector<std::string> add_types();
 
+  // Makes `type` authenticated (its codec seals and carries the trailer:
+  // dccl::Codec::set_authentication) with window `window_s`: received
+  // messages of it must verify and be fresh and new (auth_guard.h), and a
+  // Submit whose ttl_s is longer than the window is refused. Call before
+  // restore(). Throws std::invalid_argument naming the type when it has no
+  // queue, is not authenticated by the codec, the window is not > 0, or
+  // the queue's ttl_s is longer than the window.
+  void authenticate(const std::string& type, double window_s);
+
   // Start-up: brings back what the journal holds (after a crash, messages
   // that were in flight come back eligible). A stored message whose type is
   // no longer loaded, or that no longer encodes, is dropped with an event.
@@ -125,6 +135,8 @@ class QueueManager {
   std::vector<const Queue*> queues() const;
   QueueStats stats(const std::string& type) const;
   uint64_t malformed_frames() const { return malformed_frames_; }
+  // Received messages of authenticated types refused, per reason.
+  const AuthRefusals& auth_refusals() const { return auth_guard_.refusals(); }
   // Received messages recognised as retransmissions and not passed on.
   uint64_t duplicates() const { return receive_filter_.duplicates(); }
   // Received messages refused as stale: stamped longer ago than their
@@ -180,7 +192,16 @@ class QueueManager {
     // W (0: off), as the ReceiveFilter gave it when the queue was made;
     // prepare_new reads it on any thread to bound a Submit's ttl.
     double window_s = 0;
+    // The authenticated window (0: not authenticated), set before any
+    // Submit; bounds a Submit's ttl as window_s does.
+    double auth_window_s = 0;
   };
+
+  // The tag, stamp and replay checks of one received message of an
+  // authenticated type (its DCCL bytes and trailer): its stamp, or nullopt
+  // when refused (counted and logged by the guard).
+  std::optional<dccl::AuthStamp> admit_authenticated(const std::string& type, std::string_view message,
+                                                     int32_t transmission_src, double now);
 
   // journal_new's checks and encoding: the message as it will be queued,
   // not yet journaled (id 0).
@@ -201,6 +222,7 @@ class QueueManager {
     bool already_journaled = false;     // the journal has the event: count and log only
     std::string_view encoded = {};      // kReceived: the message's bytes
     std::optional<std::string_view> link_figures = std::nullopt;  // kReceived: its transmission's
+    std::optional<uint32_t> auth_sent_s = std::nullopt;           // kReceived, authenticated: its stamp
   };
   // Counts, logs and journals `change` to a message of `state`'s type, at `now`.
   void emit(TypeState& state, double now, const Change& change);
@@ -227,6 +249,7 @@ class QueueManager {
   std::unordered_map<const TypeState*, double> standing_;
   uint64_t malformed_frames_ = 0;
   ReceiveFilter receive_filter_;  // core thread
+  AuthGuard auth_guard_;          // core thread (its windows are fixed before any Submit)
   int64_t last_received_seq_ = 0;
 };
 

@@ -29,6 +29,14 @@ constexpr std::string_view kLoadReceived =
     "SELECT time, type, src, dest, encoded FROM event_log "
     "WHERE time >= ? AND kind = 'received' AND encoded IS NOT NULL ORDER BY time, id";
 
+// OR IGNORE: the same bytes accepted twice cannot happen (the AuthGuard
+// refuses the second), but a row must never fail an event's transaction.
+constexpr std::string_view kInsertAuthAccepted =
+    "INSERT OR IGNORE INTO auth_accepted (type, encoded, sent_s) VALUES (?, ?, ?)";
+constexpr std::string_view kForgetAuthAccepted = "DELETE FROM auth_accepted WHERE sent_s < ?";
+constexpr std::string_view kLoadAuthAccepted =
+    "SELECT type, encoded, sent_s FROM auth_accepted WHERE sent_s >= ? ORDER BY sent_s";
+
 // A cached statement left mid-step would hold the batch open; reset it
 // whichever way the work ends.
 class ResetOnExit {
@@ -137,6 +145,18 @@ void SqliteJournal::write_event(const QueueEvent& event) {
     advance.bind(1, event.seq);
     advance.step();
   }
+  if (event.auth_sent_s) {
+    // With its received event: a message published is one a replay of
+    // which will be recognised, even after a crash.
+    Statement& accepted = writer_.prepared(kInsertAuthAccepted);
+    ResetOnExit reset_accepted(accepted);
+    accepted.bind(1, event.type).bind_blob(2, event.encoded).bind(3, int64_t{*event.auth_sent_s});
+    accepted.step();
+    Statement& forget = writer_.prepared(kForgetAuthAccepted);
+    ResetOnExit reset_forget(forget);
+    forget.bind_double(1, event.auth_forget_before);
+    forget.step();
+  }
   // Same savepoint, same transaction: the event and the removal are on disk
   // together or not at all.
   if (event.removes_message && event.message_id != 0) {
@@ -182,6 +202,24 @@ std::vector<QueueEvent> SqliteJournal::received_since(double since) {
           e.src = query.is_null(2) ? -1 : static_cast<int32_t>(query.column_int64(2));
           e.dest = query.is_null(3) ? -1 : static_cast<int32_t>(query.column_int64(3));
           e.encoded = query.column_blob(4);
+        }
+        return events;
+      })
+      .get();
+}
+
+std::vector<QueueEvent> SqliteJournal::authenticated_since(double sent_since) {
+  return writer_
+      .submit([sent_since](Database& db) {
+        std::vector<QueueEvent> events;
+        Statement query = db.prepare(kLoadAuthAccepted);
+        query.bind_double(1, sent_since);
+        while (query.step()) {
+          QueueEvent& e = events.emplace_back();
+          e.kind = QueueEventKind::kReceived;
+          e.type = query.column_text(0);
+          e.encoded = query.column_blob(1);
+          e.auth_sent_s = static_cast<uint32_t>(query.column_int64(2));
         }
         return events;
       })

@@ -34,6 +34,8 @@ class SqliteJournal final : public MessageJournal {
   std::vector<JournalMessage> load() override;
   std::vector<QueueEvent> received_since(double since) override;
   // Throws store::StoreError when the store cannot be read.
+  std::vector<QueueEvent> authenticated_since(double sent_since) override;
+  // Throws store::StoreError when the store cannot be read.
   int64_t last_received_seq() override;
   // Throws store::StoreError when the writer is stopped.
   void when_committed(Committed committed) override;

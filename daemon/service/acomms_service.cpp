@@ -2,11 +2,16 @@
 
 namespace acomms::service {
 
-AcommsService::AcommsService(DaemonIdentity identity, Node node)
-    : identity_(std::move(identity)), node_(node), started_(std::chrono::steady_clock::now()) {}
+AcommsService::AcommsService(DaemonIdentity identity, Node node, const ApiRoles& roles)
+    : identity_(std::move(identity)), node_(node), roles_(roles), started_(std::chrono::steady_clock::now()) {}
 
-grpc::Status AcommsService::GetStatus(grpc::ServerContext*, const v1::GetStatusRequest*,
+grpc::Status AcommsService::allowed(const grpc::ServerContextBase& context, std::string_view rpc) const {
+  return roles_.check(context, "/acomms.v1.Acomms/" + std::string(rpc));
+}
+
+grpc::Status AcommsService::GetStatus(grpc::ServerContext* context, const v1::GetStatusRequest*,
                                       v1::Status* response) {
+  if (grpc::Status denied = allowed(*context, "GetStatus"); !denied.ok()) return denied;
   response->set_version(identity_.version);
   response->set_uptime_s(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count());
@@ -17,6 +22,8 @@ grpc::Status AcommsService::GetStatus(grpc::ServerContext*, const v1::GetStatusR
   response->set_modem_id(identity_.modem_id);
   auto stable = node_.submitter.types_stable();
   response->set_dccl_types(static_cast<int32_t>(node_.codec.types().size()));
+  if (std::optional<Role> role = roles_.role_of(*context)) response->set_caller_role(std::string(to_string(*role)));
+  response->set_caller(ApiRoles::source(*context));
   return grpc::Status::OK;
 }
 

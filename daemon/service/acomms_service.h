@@ -20,6 +20,7 @@
 #include "queue/event_log_reader.h"
 #include "queue/queue_manager.h"
 #include "queue/submitter.h"
+#include "service/api_roles.h"
 #include "service/definitions.h"
 #include "service/subscriber_hub.h"
 #include "telemetry/telemetry_node.h"
@@ -74,7 +75,8 @@ struct Node {
 // wait cost more CPU in thread hand-offs than the Submit itself.
 class AcommsService final : public v1::Acomms::WithCallbackMethod_Submit<v1::Acomms::Service> {
  public:
-  AcommsService(DaemonIdentity identity, Node node);
+  // `roles` (who may call what: api_roles.h) must outlive the service.
+  AcommsService(DaemonIdentity identity, Node node, const ApiRoles& roles);
 
   grpc::Status GetStatus(grpc::ServerContext*, const v1::GetStatusRequest*, v1::Status*) override;
 
@@ -122,8 +124,13 @@ class AcommsService final : public v1::Acomms::WithCallbackMethod_Submit<v1::Aco
   // published live.
   v1::ReceivedMessage from_track(const telemetry::ReceivedPosition& position) const;
 
+  // The role check every method makes first: OK, or PERMISSION_DENIED
+  // naming the role `rpc` (a method of acomms.v1.Acomms) needs.
+  grpc::Status allowed(const grpc::ServerContextBase& context, std::string_view rpc) const;
+
   DaemonIdentity identity_;
   Node node_;
+  const ApiRoles& roles_;
   std::chrono::steady_clock::time_point started_;
   mutable dccl::JsonReader json_reader_;
 };

@@ -57,8 +57,9 @@ grpc::Status to_status(const DefinitionError& e) {
 
 }  // namespace
 
-grpc::Status AcommsService::LoadDefinitions(grpc::ServerContext*, const v1::LoadDefinitionsRequest* request,
+grpc::Status AcommsService::LoadDefinitions(grpc::ServerContext* context, const v1::LoadDefinitionsRequest* request,
                                             v1::LoadDefinitionsResponse* response) {
+  if (grpc::Status denied = allowed(*context, "LoadDefinitions"); !denied.ok()) return denied;
   size_t text_bytes = 0;
   for (const auto& definition : request->inline_()) text_bytes += definition.text().size();
   if (text_bytes > 1024 * 1024) {
@@ -77,8 +78,9 @@ grpc::Status AcommsService::LoadDefinitions(grpc::ServerContext*, const v1::Load
   return grpc::Status::OK;
 }
 
-grpc::Status AcommsService::ListTypes(grpc::ServerContext*, const v1::ListTypesRequest* request,
+grpc::Status AcommsService::ListTypes(grpc::ServerContext* context, const v1::ListTypesRequest* request,
                                       v1::ListTypesResponse* response) {
+  if (grpc::Status denied = allowed(*context, "ListTypes"); !denied.ok()) return denied;
   auto stable = node_.submitter.types_stable();
   if (request->types().empty()) {
     for (const dccl::TypeInfo* info : node_.codec.types()) {

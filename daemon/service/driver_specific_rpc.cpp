@@ -38,6 +38,7 @@ grpc::StatusCode code_of(DriverSpecificStatus status) {
 
 grpc::Status AcommsService::DriverSpecific(grpc::ServerContext* context, const v1::DriverSpecificRequest* request,
                                            v1::DriverSpecificResponse* response) {
+  if (grpc::Status denied = allowed(*context, "DriverSpecific"); !denied.ok()) return denied;
   const v1::ModemTransmission& tx = request->transmission();
   if (tx.type() != v1::ModemTransmission::DRIVER_SPECIFIC) {
     return {grpc::StatusCode::INVALID_ARGUMENT,

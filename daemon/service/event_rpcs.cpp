@@ -8,8 +8,9 @@
 
 namespace acomms::service {
 
-grpc::Status AcommsService::Events(grpc::ServerContext*, const v1::EventsRequest* request,
+grpc::Status AcommsService::Events(grpc::ServerContext* context, const v1::EventsRequest* request,
                                    v1::EventsResponse* response) {
+  if (grpc::Status denied = allowed(*context, "Events"); !denied.ok()) return denied;
   using grpc::StatusCode;
   size_t limit = 0;
   if (grpc::Status refused = page_limit(request->limit(), &limit); !refused.ok()) return refused;

@@ -125,8 +125,9 @@ void fill_arrivals(const std::vector<gram::ReceiverArrivals>& receivers, v1::Arr
 
 }  // namespace
 
-GramService::GramService(gram::ModelPool& pool, gram::VehicleEnvironment& environment, SaveEnvironment save)
-    : pool_(pool), environment_(environment), save_(std::move(save)) {}
+GramService::GramService(gram::ModelPool& pool, gram::VehicleEnvironment& environment, SaveEnvironment save,
+                         const ApiRoles& roles)
+    : pool_(pool), environment_(environment), save_(std::move(save)), roles_(roles) {}
 
 grpc::ServerUnaryReactor* GramService::run(grpc::CallbackServerContext* context, const v1::ModelRequestHeader& header,
                                            gram::ModelRequest request, Fill fill) {
@@ -151,6 +152,9 @@ grpc::ServerUnaryReactor* GramService::run(grpc::CallbackServerContext* context,
 grpc::ServerUnaryReactor* GramService::TransmissionLoss(grpc::CallbackServerContext* context,
                                                         const v1::TransmissionLossRequest* request,
                                                         v1::TransmissionLossReply* reply) {
+  if (grpc::Status denied = roles_.check(*context, "/acomms.v1.Gram/TransmissionLoss"); !denied.ok()) {
+    return finish_now(context, denied);
+  }
   gram::ModelRequest run_request;
   run_request.kind = gram::ModelKind::kTransmissionLoss;
   return run(context, request->header(), std::move(run_request), [reply](const gram::ModelOutcome& outcome) {
@@ -162,6 +166,9 @@ grpc::ServerUnaryReactor* GramService::TransmissionLoss(grpc::CallbackServerCont
 
 grpc::ServerUnaryReactor* GramService::Arrivals(grpc::CallbackServerContext* context,
                                                 const v1::ArrivalsRequest* request, v1::ArrivalsReply* reply) {
+  if (grpc::Status denied = roles_.check(*context, "/acomms.v1.Gram/Arrivals"); !denied.ok()) {
+    return finish_now(context, denied);
+  }
   gram::ModelRequest run_request;
   run_request.kind = gram::ModelKind::kArrivals;
   run_request.max_arrivals = request->max_arrivals() ? request->max_arrivals() : 200;
@@ -174,6 +181,9 @@ grpc::ServerUnaryReactor* GramService::Arrivals(grpc::CallbackServerContext* con
 grpc::ServerUnaryReactor* GramService::DepthObjective(grpc::CallbackServerContext* context,
                                                       const v1::DepthObjectiveRequest* request,
                                                       v1::DepthObjectiveResponse* response) {
+  if (grpc::Status denied = roles_.check(*context, "/acomms.v1.Gram/DepthObjective"); !denied.ok()) {
+    return finish_now(context, denied);
+  }
   gram::ModelRequest run_request;
   run_request.kind = gram::ModelKind::kDepthObjective;
   run_request.objective = request->query();
@@ -187,6 +197,9 @@ grpc::ServerUnaryReactor* GramService::DepthObjective(grpc::CallbackServerContex
 grpc::ServerUnaryReactor* GramService::UpdateEnvironment(grpc::CallbackServerContext* context,
                                                          const v1::UpdateEnvironmentRequest* request,
                                                          gram::KnownEnvironment* reply) {
+  if (grpc::Status denied = roles_.check(*context, "/acomms.v1.Gram/UpdateEnvironment"); !denied.ok()) {
+    return finish_now(context, denied);
+  }
   if (request->casts_size() > kMaxCasts)
     return finish_now(context, {grpc::StatusCode::INVALID_ARGUMENT,
                                 "casts: " + std::to_string(request->casts_size()) + " casts; at most " +
@@ -235,12 +248,18 @@ grpc::ServerUnaryReactor* GramService::UpdateEnvironment(grpc::CallbackServerCon
 grpc::ServerUnaryReactor* GramService::GetEnvironment(grpc::CallbackServerContext* context,
                                                       const v1::GetEnvironmentRequest*,
                                                       gram::KnownEnvironment* reply) {
+  if (grpc::Status denied = roles_.check(*context, "/acomms.v1.Gram/GetEnvironment"); !denied.ok()) {
+    return finish_now(context, denied);
+  }
   *reply = environment_.snapshot();
   return finish_now(context, grpc::Status::OK);
 }
 
 grpc::ServerUnaryReactor* GramService::PoolStatus(grpc::CallbackServerContext* context, const v1::PoolStatusRequest*,
                                                   v1::PoolStatusReply* reply) {
+  if (grpc::Status denied = roles_.check(*context, "/acomms.v1.Gram/PoolStatus"); !denied.ok()) {
+    return finish_now(context, denied);
+  }
   const gram::ModelPoolStats s = pool_.stats();
   reply->set_workers(s.workers);
   reply->set_running(s.running);

@@ -14,6 +14,7 @@
 #include "acomms/v1/gram.grpc.pb.h"
 #include "gram/model_pool.h"
 #include "gram/vehicle_environment.h"
+#include "service/api_roles.h"
 
 namespace acomms::service {
 
@@ -24,7 +25,9 @@ using SaveEnvironment =
 
 class GramService final : public v1::Gram::CallbackService {
  public:
-  GramService(gram::ModelPool& pool, gram::VehicleEnvironment& environment, SaveEnvironment save);
+  // `roles` (who may call what: api_roles.h) must outlive the service.
+  GramService(gram::ModelPool& pool, gram::VehicleEnvironment& environment, SaveEnvironment save,
+              const ApiRoles& roles);
 
   grpc::ServerUnaryReactor* TransmissionLoss(grpc::CallbackServerContext*, const v1::TransmissionLossRequest*,
                                              v1::TransmissionLossReply*) override;
@@ -49,6 +52,7 @@ class GramService final : public v1::Gram::CallbackService {
   gram::ModelPool& pool_;
   gram::VehicleEnvironment& environment_;
   SaveEnvironment save_;
+  const ApiRoles& roles_;
 };
 
 }  // namespace acomms::service

@@ -68,6 +68,10 @@ static void fill_link_status(const Link& link, const DaemonIdentity& identity, c
   counters->set_duplicates_dropped(queues.duplicates());
   counters->set_malformed_frames(queues.malformed_frames());
   counters->set_stale_refused(queues.stale_refused());
+  const queue::AuthRefusals& refused = queues.auth_refusals();
+  counters->set_auth_failed(refused.auth_failed);
+  counters->set_auth_replayed(refused.replayed);
+  counters->set_auth_stale(refused.stale);
   const link::DriverCounters lost = link.driver.counters();
   counters->set_lost_half_duplex(lost.lost_half_duplex);
   counters->set_lost_collision(lost.lost_collision);
@@ -76,8 +80,9 @@ static void fill_link_status(const Link& link, const DaemonIdentity& identity, c
   counters->set_bad_frames_received(stats.bad_frames_received);
 }
 
-grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatusRequest* request,
+grpc::Status AcommsService::LinkStatus(grpc::ServerContext* context, const v1::LinkStatusRequest* request,
                                        v1::LinkStatusResponse* response) {
+  if (grpc::Status denied = allowed(*context, "LinkStatus"); !denied.ok()) return denied;
   Link* asked = nullptr;
   if (grpc::Status found = find_link(request->link(), &asked); !found.ok()) return found;
   node_.core.call([&] {
@@ -93,8 +98,9 @@ grpc::Status AcommsService::LinkStatus(grpc::ServerContext*, const v1::LinkStatu
   return grpc::Status::OK;
 }
 
-grpc::Status AcommsService::SetLinkEnabled(grpc::ServerContext*, const v1::SetLinkEnabledRequest* request,
+grpc::Status AcommsService::SetLinkEnabled(grpc::ServerContext* context, const v1::SetLinkEnabledRequest* request,
                                            v1::SetLinkEnabledResponse* response) {
+  if (grpc::Status denied = allowed(*context, "SetLinkEnabled"); !denied.ok()) return denied;
   if (request->link().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "link: name the link to change"};
   Link* link = nullptr;
   if (grpc::Status found = find_link(request->link(), &link); !found.ok()) return found;
@@ -105,8 +111,9 @@ grpc::Status AcommsService::SetLinkEnabled(grpc::ServerContext*, const v1::SetLi
   return grpc::Status::OK;
 }
 
-grpc::Status AcommsService::SetCycle(grpc::ServerContext*, const v1::SetCycleRequest* request,
+grpc::Status AcommsService::SetCycle(grpc::ServerContext* context, const v1::SetCycleRequest* request,
                                      v1::SetCycleResponse* response) {
+  if (grpc::Status denied = allowed(*context, "SetCycle"); !denied.ok()) return denied;
   Link* link = nullptr;
   if (grpc::Status found = find_link(request->link(), &link); !found.ok()) return found;
   // The MAC says whether its cycle can be set: the service names no MAC.

@@ -74,6 +74,10 @@ grpc::ServerUnaryReactor* AcommsService::Submit(grpc::CallbackServerContext* con
   // on whichever thread that is known (queue/submitter.h); gRPC keeps
   // request and response alive until Finish.
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
+  if (grpc::Status denied = allowed(*context, "Submit"); !denied.ok()) {
+    reactor->Finish(denied);
+    return reactor;
+  }
   std::unique_ptr<google::protobuf::Message> message;
   grpc::Status parsed = parse_submitted(*request, &message);
   if (!parsed.ok()) {
@@ -87,8 +91,9 @@ grpc::ServerUnaryReactor* AcommsService::Submit(grpc::CallbackServerContext* con
   return reactor;
 }
 
-grpc::Status AcommsService::Encode(grpc::ServerContext*, const v1::EncodeRequest* request,
+grpc::Status AcommsService::Encode(grpc::ServerContext* context, const v1::EncodeRequest* request,
                                    v1::EncodeResponse* response) {
+  if (grpc::Status denied = allowed(*context, "Encode"); !denied.ok()) return denied;
   auto stable = node_.submitter.types_stable();
   std::unique_ptr<google::protobuf::Message> message;
   grpc::Status parsed = parse_message(
@@ -107,8 +112,9 @@ grpc::Status AcommsService::Encode(grpc::ServerContext*, const v1::EncodeRequest
   return grpc::Status::OK;
 }
 
-grpc::Status AcommsService::Decode(grpc::ServerContext*, const v1::DecodeRequest* request,
+grpc::Status AcommsService::Decode(grpc::ServerContext* context, const v1::DecodeRequest* request,
                                    v1::DecodeResponse* response) {
+  if (grpc::Status denied = allowed(*context, "Decode"); !denied.ok()) return denied;
   if (request->encoded().size() > kMaxMessageBytes) {
     return {grpc::StatusCode::INVALID_ARGUMENT,
             "encoded is larger than " + std::to_string(kMaxMessageBytes) + " bytes"};

@@ -22,8 +22,9 @@ v1::QueuePolicy to_proto(const queue::QueuePolicy& policy) {
 
 }  // namespace
 
-grpc::Status AcommsService::ListQueued(grpc::ServerContext*, const v1::ListQueuedRequest* request,
+grpc::Status AcommsService::ListQueued(grpc::ServerContext* context, const v1::ListQueuedRequest* request,
                                        v1::ListQueuedResponse* response) {
+  if (grpc::Status denied = allowed(*context, "ListQueued"); !denied.ok()) return denied;
   size_t limit = 0;
   if (grpc::Status refused = page_limit(request->limit(), &limit); !refused.ok()) return refused;
   auto stable = node_.submitter.types_stable();
@@ -72,7 +73,8 @@ grpc::Status AcommsService::ListQueued(grpc::ServerContext*, const v1::ListQueue
   return grpc::Status::OK;
 }
 
-grpc::Status AcommsService::Cancel(grpc::ServerContext*, const v1::CancelRequest* request, v1::CancelResponse*) {
+grpc::Status AcommsService::Cancel(grpc::ServerContext* context, const v1::CancelRequest* request, v1::CancelResponse*) {
+  if (grpc::Status denied = allowed(*context, "Cancel"); !denied.ok()) return denied;
   if (request->message_id() <= 0) return {grpc::StatusCode::INVALID_ARGUMENT, "message_id must be positive"};
   if (request->reason().size() > 1024) return {grpc::StatusCode::INVALID_ARGUMENT, "reason is longer than 1024 bytes"};
   std::string reason = request->reason().empty() ? "cancelled by client" : request->reason();
@@ -86,8 +88,9 @@ grpc::Status AcommsService::Cancel(grpc::ServerContext*, const v1::CancelRequest
   return grpc::Status::OK;
 }
 
-grpc::Status AcommsService::Flush(grpc::ServerContext*, const v1::FlushRequest* request,
+grpc::Status AcommsService::Flush(grpc::ServerContext* context, const v1::FlushRequest* request,
                                   v1::FlushResponse* response) {
+  if (grpc::Status denied = allowed(*context, "Flush"); !denied.ok()) return denied;
   if (request->type().empty()) return {grpc::StatusCode::INVALID_ARGUMENT, "name the type whose queue to flush"};
   auto stable = node_.submitter.types_stable();
   try {
@@ -99,8 +102,9 @@ grpc::Status AcommsService::Flush(grpc::ServerContext*, const v1::FlushRequest* 
   return grpc::Status::OK;
 }
 
-grpc::Status AcommsService::QueueStats(grpc::ServerContext*, const v1::QueueStatsRequest* request,
+grpc::Status AcommsService::QueueStats(grpc::ServerContext* context, const v1::QueueStatsRequest* request,
                                        v1::QueueStatsResponse* response) {
+  if (grpc::Status denied = allowed(*context, "QueueStats"); !denied.ok()) return denied;
   auto stable = node_.submitter.types_stable();
   for (const std::string& type : request->types()) {
     if (node_.queues.find_queue(type) == nullptr) {

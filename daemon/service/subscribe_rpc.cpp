@@ -87,6 +87,7 @@ v1::ReceivedMessage AcommsService::from_track(const telemetry::ReceivedPosition&
 
 grpc::Status AcommsService::Subscribe(grpc::ServerContext* context, const v1::SubscribeRequest* request,
                                       grpc::ServerWriter<v1::ReceivedMessage>* writer) {
+  if (grpc::Status denied = allowed(*context, "Subscribe"); !denied.ok()) return denied;
   Subscription::Filter filter;
   {
     auto stable = node_.submitter.types_stable();

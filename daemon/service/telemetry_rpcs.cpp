@@ -55,8 +55,9 @@ grpc::Status to_fix(const v1::NavigationFix& fix, uint64_t index, const telemetr
 
 }  // namespace
 
-grpc::Status AcommsService::SubmitNavigation(grpc::ServerContext*, grpc::ServerReader<v1::NavigationFix>* reader,
+grpc::Status AcommsService::SubmitNavigation(grpc::ServerContext* context, grpc::ServerReader<v1::NavigationFix>* reader,
                                              v1::SubmitNavigationResponse* response) {
+  if (grpc::Status denied = allowed(*context, "SubmitNavigation"); !denied.ok()) return denied;
   const telemetry::NodeSettings& settings = node_.telemetry.settings();
   v1::NavigationFix fix;
   uint64_t index = 0;
@@ -91,8 +92,9 @@ grpc::Status AcommsService::SubmitNavigation(grpc::ServerContext*, grpc::ServerR
   return grpc::Status::OK;
 }
 
-grpc::Status AcommsService::Track(grpc::ServerContext*, const v1::TrackRequest* request,
+grpc::Status AcommsService::Track(grpc::ServerContext* context, const v1::TrackRequest* request,
                                   v1::TrackResponse* response) {
+  if (grpc::Status denied = allowed(*context, "Track"); !denied.ok()) return denied;
   if (!std::isfinite(request->since())) {
     return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, "since must be finite");
   }

@@ -173,6 +173,22 @@ TEST(ConfigLoader, OverlongSocketPathIsRefused) {
   EXPECT_NE(e.problem().find("at most 107"), std::string::npos) << e.problem();
 }
 
+// The auth section's mistakes are load errors naming the line and field.
+TEST(ConfigLoader, AuthWindowOfZeroTagBitsOutOfRangeAndMissingKeyringAreRefused) {
+  ConfigError zero = parse_error(
+      "auth {\n  keyring_file: \"/k\"\n  type { type: \"a.B\" window_s: 60 }\n  type { type: \"a.C\" }\n}\n");
+  EXPECT_EQ(zero.field(), "auth.type");
+  EXPECT_EQ(zero.line(), 4);
+  EXPECT_NE(zero.problem().find("a.C: window_s must be more than 0 seconds"), std::string::npos) << zero.problem();
+  ConfigError bits = parse_error("auth {\n  tag_bits: 28\n}\n");
+  EXPECT_EQ(bits.field(), "auth.tag_bits");
+  EXPECT_EQ(bits.line(), 2);
+  EXPECT_NE(bits.problem().find("must be 32 to 64, a multiple of 8"), std::string::npos) << bits.problem();
+  ConfigError keyring = parse_error("auth { type { type: \"a.B\" window_s: 60 } }");
+  EXPECT_EQ(keyring.field(), "auth.type");
+  EXPECT_NE(keyring.problem().find("need auth.keyring_file"), std::string::npos) << keyring.problem();
+}
+
 TEST(ConfigLoader, BadDriverAndMacNamesAreRefused) {
   ConfigError driver = parse_error("driver { name: \"Sim Driver\" }");
   EXPECT_EQ(driver.field(), "driver.name");

@@ -224,6 +224,45 @@ TEST_F(JournalTest, ReceivedSinceGivesReceivedEventsWithTheirBytesOldestFirstAft
   EXPECT_EQ(received[1].encoded, "second");
 }
 
+// Authenticated messages accepted (migrations/0009_auth_accepted.sql): kept
+// with their received event, read back after a reopen by stamp, and
+// forgotten once stamped before the event's auth_forget_before.
+TEST_F(JournalTest, AuthenticatedAcceptedAreKeptWithTheirEventAndForgottenPastTheWindow) {
+  auto accepted = [](uint32_t sent, std::string encoded, double forget_before) {
+    QueueEvent e;
+    e.kind = QueueEventKind::kReceived;
+    e.time = sent + 1.0;
+    e.type = "test.Command";
+    e.encoded = std::move(encoded);
+    e.auth_sent_s = sent;
+    e.auth_forget_before = forget_before;
+    return e;
+  };
+  const std::string with_nul("\x0a\x00\x7e", 3);
+  journal().record(accepted(1000, "first", 0));
+  journal().record(accepted(1500, with_nul, 0));
+  QueueEvent plain;  // not authenticated: no row
+  plain.kind = QueueEventKind::kReceived;
+  plain.type = "test.Note";
+  plain.encoded = "note";
+  journal().record(plain);
+  journal().flush();
+  reopen();
+  std::vector<QueueEvent> kept = journal().authenticated_since(0);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].type, "test.Command");
+  EXPECT_EQ(kept[0].encoded, "first");
+  EXPECT_EQ(kept[0].auth_sent_s, 1000u);
+  EXPECT_EQ(kept[1].encoded, with_nul);
+  EXPECT_EQ(journal().authenticated_since(1200).size(), 1u);
+  EXPECT_EQ(count("SELECT COUNT(*) FROM event_log WHERE kind = 'received'"), 3);
+  // The next one forgets what was stamped before 1200.
+  journal().record(accepted(1800, "third", 1200));
+  journal().flush();
+  EXPECT_EQ(count("SELECT COUNT(*) FROM auth_accepted"), 2);
+  EXPECT_EQ(count("SELECT MIN(sent_s) FROM auth_accepted"), 1500);
+}
+
 TEST_F(JournalTest, RemovalAndItsEventAreStoredTogetherOrNotAtAll) {
   int64_t a = journal().append(message("a"));
   int64_t b = journal().append(message("b"));

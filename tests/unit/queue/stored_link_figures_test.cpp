@@ -210,6 +210,7 @@ TEST_F(StoredLinkFiguresTest, ReceivedEventsOfAStoreAtMigration0007ReplayWithout
 
   open();
   EXPECT_EQ(store_->migration().from_version, 7);
+  // Migrated up to the newest (0008 and whatever followed it).
   EXPECT_EQ(store_->schema_version(), store::known_migrations().back().version);
   EXPECT_EQ(manager_->last_received_seq(), 1);
   const v1::ModemTransmission t = psk_reception();
