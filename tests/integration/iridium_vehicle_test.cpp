@@ -19,6 +19,7 @@
 
 #include "daemon_harness.h"
 #include "dccl/codec.h"
+#include "iridium_vehicle_link.h"
 #include "stream_subscriber.h"
 #include "tcp_modem_host.h"
 
@@ -49,9 +50,7 @@ TEST(IridiumVehicle, SendEndsAsAnMoAndAQueuedMtReachesASubscriberOnce) {
   const std::string proto = ACOMMS_SOURCE_DIR "/examples/messages.proto";
   std::ofstream(dir / "vehicle.conf")
       << DaemonConfig{.data_dir = dir / "vehicle", .unix_socket = socket, .proto_file = proto}.text()
-      << "driver { name: \"iridium\" modem_id: " << kVehicle << " restart_min_s: 0.5 restart_max_s: 2\n"
-      << "  iridium { port: \"tcp:127.0.0.1:" << host.port() << "\" shore_id: " << kShore
-      << " imei: \"" << kImei << "\" mailbox_check_s: 30 send_check_s: 1 } }\n"
+      << iridium_vehicle_driver(kVehicle, host.port(), kShore, kImei, "mailbox_check_s: 30 send_check_s: 1")
       << "mac { name: \"none\" }\n"
       << "queue {\n"
       << "  type { type: \"example.Status\" roles { source_field: \"src\" destination_field: \"dest\" timestamp_field: \"time\" } }\n"
