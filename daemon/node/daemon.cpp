@@ -62,7 +62,8 @@ void Daemon::start() {
   received_ = std::make_unique<ReceivedMessageRouter>(
       [this](const queue::ReceivedMessage& message) { telemetry_->on_received(message); },
       queue::when_stored(*journal_),
-      [this](const v1::ReceivedMessage& message) { subscribers_.publish(message); });
+      [this](const v1::ReceivedMessage& message) { subscribers_.publish(message); },
+      [this](std::function<void()> work) { core_->post(std::move(work)); });
   events_ = std::make_unique<queue::EventLogReader>(store_->db().path());
   codec_ = make_codec(config_.dccl());
   // Before the queues restore: messages of these types are in the journal.
@@ -169,8 +170,9 @@ void Daemon::build_links() {
       .models = gram_.pool.get(),
       .queues = *queues_,
       .choice = *choice_,
-      .deliver = [router = received_.get()](queue::ReceivedMessage message,
-                                            const v1::ModemTransmission& from) { router->route(message, from); },
+      .deliver = [router = received_.get()](queue::ReceivedMessage message, const v1::ModemTransmission& from) {
+        router->route(std::move(message), from);
+      },
       // Daemon::stop flushes the writer before the core goes, so no
       // commit callback outlives it.
       .after_receipt_durable =

@@ -10,13 +10,18 @@
 namespace acomms::node {
 
 ReceivedMessageRouter::ReceivedMessageRouter(ToTelemetry telemetry, queue::WhenStored when_stored,
-                                             Publish publish)
-    : telemetry_(std::move(telemetry)), when_stored_(std::move(when_stored)), publish_(std::move(publish)) {}
+                                             Publish publish, Later later)
+    : telemetry_(std::move(telemetry)),
+      when_stored_(std::move(when_stored)),
+      publish_(std::move(publish)),
+      later_(std::move(later)) {}
 
-void ReceivedMessageRouter::route(const queue::ReceivedMessage& message, const v1::ModemTransmission& from) {
+void ReceivedMessageRouter::route(queue::ReceivedMessage message, const v1::ModemTransmission& from) {
   spdlog::debug("received {} from {} (transmission from {})", message.type, message.src, from.src());
   if (telemetry::is_telemetry_type(message.type)) {
-    telemetry_(message);
+    // After the rest of the transmission (the file comment says why).
+    auto held = std::make_shared<queue::ReceivedMessage>(std::move(message));
+    later_([telemetry = telemetry_, held] { telemetry(*held); });
     return;
   }
   // Built now: `message` is gone by the time its event is committed.

@@ -95,6 +95,15 @@ grpc::Status AcommsService::Encode(grpc::ServerContext* context, const v1::Encod
                                    v1::EncodeResponse* response) {
   if (grpc::Status denied = allowed(*context, "Encode"); !denied.ok()) return denied;
   auto stable = node_.submitter.types_stable();
+  // An authenticated type comes out sealed (tag and stamp): a frame any
+  // modem could transmit and a receiver would accept, so it takes the role
+  // that may send (Submit's), not a viewer's.
+  if (node_.codec.find_type(request->type()) != nullptr && node_.codec.authenticated(request->type())) {
+    if (grpc::Status denied = allowed(*context, "Submit"); !denied.ok()) {
+      return {grpc::StatusCode::PERMISSION_DENIED,
+              "Encode of authenticated type " + request->type() + " makes a sealed frame: " + denied.error_message()};
+    }
+  }
   std::unique_ptr<google::protobuf::Message> message;
   grpc::Status parsed = parse_message(
       request->type(), request->message_case() == v1::EncodeRequest::kPayload ? &request->payload() : nullptr,

@@ -283,10 +283,13 @@ void TelemetryNode::consume(const WireMessage& message, int64_t event_seq, doubl
         progress.step();
         progress.reset();
       },
-      [this, positions](std::exception_ptr error) {
+      [this, positions](std::exception_ptr error) mutable {
         if (error) {
           spdlog::error("telemetry: {} position{} not stored; passed on anyway", positions.size(),
                         positions.size() == 1 ? "" : "s");
+          // Their numbers were not made durable: a restart may hand them
+          // out again, so they go out unnumbered (live only, never resumed).
+          for (ReceivedPosition& p : positions) p.seq = 0;
         }
         if (!positions.empty() && publish_) publish_(positions);
       });

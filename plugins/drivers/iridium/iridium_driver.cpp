@@ -141,6 +141,9 @@ void IridiumDriver::maybe_start() {
     state_ = State::kBusy;
     return command("AT*R1", AtChannel::Expect::kFinal, settings_.command_timeout, [this](Reply reply) {
       radio_off_ = !reply.ok();
+      // A modem that will not turn its radio on is asked again after the
+      // back-off, never in a tight loop.
+      if (radio_off_) back_off(std::chrono::milliseconds(0), "AT*R1 (radio on) was refused");
       idle();
     });
   }

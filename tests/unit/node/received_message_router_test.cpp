@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -43,12 +44,27 @@ struct Recorder {
   std::vector<v1::ReceivedMessage> published;
   // The commit callbacks the router is waiting on, in order.
   std::vector<queue::MessageJournal::Committed> waiting;
+  // Work handed to the core for later, not yet run.
+  std::vector<std::function<void()>> later;
+  // What happened, in order: "telemetry TYPE" or "store? SEQ".
+  std::vector<std::string> order;
 
   ReceivedMessageRouter router() {
     return ReceivedMessageRouter(
-        [this](const queue::ReceivedMessage& m) { to_telemetry.push_back(m.type); },
-        [this](queue::MessageJournal::Committed committed) { waiting.push_back(std::move(committed)); },
-        [this](const v1::ReceivedMessage& m) { published.push_back(m); });
+        [this](const queue::ReceivedMessage& m) {
+          to_telemetry.push_back(m.type);
+          order.push_back("telemetry " + m.type);
+        },
+        [this](queue::MessageJournal::Committed committed) {
+          waiting.push_back(std::move(committed));
+          order.push_back("store? " + std::to_string(waiting.size()));
+        },
+        [this](const v1::ReceivedMessage& m) { published.push_back(m); },
+        [this](std::function<void()> work) { later.push_back(std::move(work)); });
+  }
+  void run_later() {
+    for (auto& work : later) work();
+    later.clear();
   }
 };
 
@@ -57,6 +73,8 @@ TEST(ReceivedMessageRouter, TelemetryTypesGoToTelemetryAndNeverToSubscribers) {
   ReceivedMessageRouter router = seen.router();
   router.route(received(std::string(telemetry::kFullType), 1), transmission_from(3));
   router.route(received(std::string(telemetry::kDeltaType), 2), transmission_from(3));
+  EXPECT_TRUE(seen.to_telemetry.empty()) << "handed on at once, not after the core's current work";
+  seen.run_later();
   EXPECT_EQ(seen.to_telemetry,
             (std::vector<std::string>{std::string(telemetry::kFullType), std::string(telemetry::kDeltaType)}));
   EXPECT_TRUE(seen.waiting.empty());
@@ -87,6 +105,20 @@ TEST(ReceivedMessageRouter, OtherTypesArePublishedOnlyOnceTheirEventIsStored) {
   seen.waiting[1](nullptr);
   ASSERT_EQ(seen.published.size(), 2u);
   EXPECT_EQ(seen.published[1].seq(), 42);
+}
+
+// Telemetry numbers the Positions it reconstructs after the messages of the
+// same transmission (which hold lower numbers): their "publish once stored"
+// requests must reach the store first, or a live subscriber would be sent a
+// Position before them and then skip them as not newer.
+TEST(ReceivedMessageRouter, TelemetryIsHandedOnAfterTheTransmissionsOtherMessagesAskedToBeStored) {
+  Recorder seen;
+  ReceivedMessageRouter router = seen.router();
+  // One transmission: a telemetry delta (seq 5), then a command (seq 6).
+  router.route(received(std::string(telemetry::kDeltaType), 5), transmission_from(3));
+  router.route(received("gv.Command", 6), transmission_from(3));
+  seen.run_later();  // the core's next work
+  EXPECT_EQ(seen.order, (std::vector<std::string>{"store? 1", "telemetry " + std::string(telemetry::kDeltaType)}));
 }
 
 // Heard is heard: the sender forgets it once ACKed, so a subscriber still
