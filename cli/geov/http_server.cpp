@@ -3,10 +3,12 @@
 #include <arpa/inet.h>
 #include <netdb.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
@@ -45,8 +47,12 @@ bool is_loopback(const sockaddr* address) {
 }
 
 // Reads until the blank line that ends the head; the head without it, or
-// a refusal (too long, timed out, closed).
-HttpParseResult read_request(int fd) {
+// a refusal (too long, timed out, closed). The whole head must come within
+// `timeout_s`: a deadline, not a wait per read, or a client sending a byte
+// now and then would hold its connection (and, with enough of them, every
+// connection) for hours before its token is even checked.
+HttpParseResult read_request(int fd, double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   std::string buffer;
   char chunk[2048];
   while (true) {
@@ -54,6 +60,11 @@ HttpParseResult read_request(int fd) {
     if (end != std::string::npos) return parse_http_request(std::string_view(buffer).substr(0, end));
     if (buffer.size() > kMaxHeadBytes) {
       return {std::nullopt, {431, "request head longer than " + std::to_string(kMaxHeadBytes) + " bytes"}};
+    }
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    pollfd ready{fd, POLLIN, 0};
+    if (left.count() <= 0 || ::poll(&ready, 1, static_cast<int>(left.count())) == 0) {
+      return {std::nullopt, {408, "no whole request head within the read timeout"}};
     }
     const ssize_t n = ::recv(fd, chunk, sizeof chunk, 0);
     if (n < 0 && errno == EINTR) continue;
@@ -159,7 +170,12 @@ void HttpServer::run() {
   while (!stopping_) {
     const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
     if (fd < 0) {
-      if (errno == EINTR || errno == ECONNABORTED || errno == EMFILE || errno == ENFILE) continue;
+      if (errno == EINTR || errno == ECONNABORTED) continue;
+      if (errno == EMFILE || errno == ENFILE) {
+        // Out of descriptors: wait for some to close rather than spin.
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        continue;
+      }
       break;  // shut down by stop()
     }
     set_timeout(fd, SO_RCVTIMEO, options_.read_timeout_s);
@@ -187,7 +203,7 @@ void HttpServer::run() {
 }
 
 void HttpServer::serve(int fd) {
-  HttpParseResult parsed = read_request(fd);
+  HttpParseResult parsed = read_request(fd, options_.read_timeout_s);
   if (parsed.request) {
     HttpResponder responder(fd, parsed.request->method == "HEAD");
     try {

@@ -109,6 +109,25 @@ TEST_F(MapSiteTest, AHeadNotFinishedWithinTheReadTimeoutIs408AndFreesItsPlace) {
   EXPECT_EQ(status_of(get(port(), "/")), 200);
 }
 
+// The read timeout bounds the whole head, not each read: a client that
+// sends a byte every 0.1 s (within the 0.5 s timeout each time) is still
+// answered 408 once 0.5 s have passed since it connected.
+TEST_F(MapSiteTest, AClientDribblingItsHeadIsCutOffAtTheTimeoutForTheWholeHead) {
+  start({}, 4, 0.5);
+  RawHttp slow(port());
+  ASSERT_TRUE(wait_until([&] { return server_->active_connections() == 1; }, 5s));
+  const auto started = std::chrono::steady_clock::now();
+  const std::string head = "GET / HTTP/1.1\r\nHost: x\r\nX-Slow: ";
+  bool cut_off = false;
+  for (int i = 0; i < 50 && !cut_off; ++i) {  // 5 s of dribbling at most
+    cut_off = !slow.send(std::string(1, head[static_cast<std::size_t>(i) % head.size()]));
+    std::this_thread::sleep_for(100ms);
+    if (server_->active_connections() == 0) cut_off = true;
+  }
+  EXPECT_TRUE(cut_off) << "a dribbling client kept its connection past the head's timeout";
+  EXPECT_LT(std::chrono::steady_clock::now() - started, 3s);
+}
+
 TEST_F(MapSiteTest, UnknownVehiclesAndBadTimeRangesAreNamed) {
   fleet_.add_positions({at(1, 1000, 0, 0), at(3, 1000, 5, 5)});
   start();
