@@ -84,6 +84,13 @@ void Daemon::start() {
   submitter_ = std::make_unique<queue::Submitter>(
       *queues_, [core = core_.get()](std::function<void()> work) { core->post(std::move(work)); });
   expiry_timer_ = std::make_unique<asio::steady_timer>(core_->context());
+  // Before any link starts: a mistake in the roles must stop the start
+  // before anything goes on the air.
+  try {
+    roles_ = std::make_unique<service::ApiRoles>(config_.auth());
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
   build_links();
   build_telemetry(telemetry_stored);
   retention_ = std::make_unique<queue::EventLogRetention>(
@@ -110,11 +117,6 @@ void Daemon::start() {
   identity.driver = links_.front()->config().driver().name();
   identity.mac = links_.front()->config().mac().name();
   identity.modem_id = static_cast<uint32_t>(own_id_);
-  try {
-    roles_ = std::make_unique<service::ApiRoles>(config_.auth());
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(e.what());
-  }
   std::vector<service::Link> links;
   for (auto& link : links_) {
     links.push_back({link->name(), link->config().driver().name(), link->config().mac().name(),

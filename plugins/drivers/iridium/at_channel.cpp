@@ -105,9 +105,10 @@ void AtChannel::on_line(const AtLine& line) {
       break;
     case Kind::kDigit:
       if (p.expect == Expect::kFinal || p.reply.digit >= 0) {
-        // Numeric result codes (ATV0): "0" is OK and "4" ERROR.
+        // Numeric result codes (ATV0): "0" is OK; anything else (4
+        // ERROR, 2 RING, 3 NO CARRIER, ...) is not.
         numeric_seen_ = true;
-        return finish(line.digit == 4 ? End::kError : End::kOk);
+        return finish(line.digit == 0 ? End::kOk : End::kError);
       }
       p.reply.digit = line.digit;
       if (p.expect == Expect::kResult && line.digit == 1) return finish(End::kDigit);

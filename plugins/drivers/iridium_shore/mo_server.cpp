@@ -58,6 +58,12 @@ struct MoServer::Impl : std::enable_shared_from_this<Impl> {
       self->accepting = false;
       if (error) {
         spdlog::warn("iridium shore: accepting an MO connection on {} failed: {}", self->listen, error.message());
+        // Out of descriptors, say: try again in a while, not in a tight loop.
+        auto pause = std::make_shared<asio::steady_timer>(self->context, std::chrono::milliseconds(100));
+        pause->async_wait([self, pause, generation](std::error_code) {
+          if (self->open && generation == self->generation) self->accept_next();
+        });
+        return;
       } else {
         std::error_code ignored;
         auto remote = connection->socket.remote_endpoint(ignored);
