@@ -398,7 +398,7 @@ TEST_F(IridiumEndToEnd, FailureAfterTheGatewayAndALostAnswerDeliverNothingTwice)
   // The layers that removed the copies, by their logs: the shore's MO
   // dedup (not only the queues' duplicate window) and the MTMSN window.
   EXPECT_EQ(count_of(shore_->stderr_text(), "was handed up before: dropped"), 1u) << logs();
-  EXPECT_EQ(count_of(vehicle_->stderr_text(), "(MTMSN already delivered): dropped"), 1u) << logs();
+  EXPECT_EQ(count_of(vehicle_->stderr_text(), "(MTMSN and payload already delivered): dropped"), 1u) << logs();
   print_transcript_excerpt();
   std::cout << summary() << "\n";
 }

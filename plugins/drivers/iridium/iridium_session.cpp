@@ -219,9 +219,9 @@ void IridiumDriver::read_mt(int mtmsn, int length, int tries, Next next) {
 
 void IridiumDriver::deliver_mt(int mtmsn, const std::string& payload) {
   if (payload.empty()) return;  // an empty buffer (00 00 00 00)
-  if (!mtmsns_.admit(mtmsn)) {
+  if (!mtmsns_.admit(mtmsn, payload)) {
     ++stats_.mt_duplicates;
-    spdlog::info("{}: MT {} again (MTMSN already delivered): dropped", label_, mtmsn);
+    spdlog::info("{}: MT {} again (MTMSN and payload already delivered): dropped", label_, mtmsn);
     return;
   }
   ++stats_.mt_delivered;

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 
+#include "iridium/mtmsn_window.h"
 #include "iridium_test_node.h"
 
 namespace acomms::fake_iridium {
@@ -139,6 +140,18 @@ TEST_F(IridiumDriverTest, AnMtOfferedTwiceIsDeliveredOnceByItsMtmsn) {
   ASSERT_TRUE(run_until([&] { return vehicle_->driver->stats().mt_duplicates == 1; }, 60s))
       << vehicle_->modem.transcript();
   EXPECT_EQ(vehicle_->received.size(), 1u);
+}
+
+// A shore endpoint that restarts may number MTs again from a value still
+// in the vehicle's window: a new MT under an old number is delivered (the
+// shore has counted it delivered); a true repeat (number and payload) is not.
+TEST(MtmsnWindow, ANumberSeenBeforeWithAnotherPayloadIsANewMt) {
+  drivers::iridium::MtmsnWindow window;
+  EXPECT_TRUE(window.admit(17, "go home"));
+  EXPECT_FALSE(window.admit(17, "go home")) << "the gateway offered it again";
+  EXPECT_TRUE(window.admit(17, "surface now")) << "a restarted shore reused the number";
+  for (int n = 0; n < static_cast<int>(drivers::iridium::MtmsnWindow::kSize); ++n) EXPECT_TRUE(window.admit(1000 + n, "x"));
+  EXPECT_TRUE(window.admit(17, "go home")) << "forgotten after 64 newer MTs";
 }
 
 TEST_F(IridiumDriverTest, RepeatedFailuresBackOffToFiveMinutesAndNeverLoopTightly) {
