@@ -150,7 +150,9 @@ TEST(MtmsnWindow, ANumberSeenBeforeWithAnotherPayloadIsANewMt) {
   EXPECT_TRUE(window.admit(17, "go home"));
   EXPECT_FALSE(window.admit(17, "go home")) << "the gateway offered it again";
   EXPECT_TRUE(window.admit(17, "surface now")) << "a restarted shore reused the number";
-  for (int n = 0; n < static_cast<int>(drivers::iridium::MtmsnWindow::kSize); ++n) EXPECT_TRUE(window.admit(1000 + n, "x"));
+  for (size_t n = 0; n < drivers::iridium::MtmsnWindow::kSize; ++n) {
+    EXPECT_TRUE(window.admit(1000 + static_cast<int>(n), "x"));
+  }
   EXPECT_TRUE(window.admit(17, "go home")) << "forgotten after 64 newer MTs";
 }
 
