@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <gtest/gtest.h>
+
 #include "grpc/health/v1/health.grpc.pb.h"
 
 namespace acomms::testing {
@@ -81,5 +83,15 @@ int free_loopback_port(int type) {
 int free_udp_port() { return free_loopback_port(SOCK_DGRAM); }
 
 int free_tcp_port() { return free_loopback_port(SOCK_STREAM); }
+
+int bound_udp_socket(int port) {
+  int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  addr.sin_port = htons(static_cast<uint16_t>(port));
+  EXPECT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)), 0);
+  return fd;
+}
 
 }  // namespace acomms::testing

@@ -46,4 +46,9 @@ int free_udp_port();
 // A TCP port on 127.0.0.1 that was free a moment ago.
 int free_tcp_port();
 
+// A UDP socket bound to 127.0.0.1:`port` (the test owns it and closes it),
+// e.g. to hold a port a daemon's udp driver wants, or to listen as a peer.
+// A bind that fails is a test failure.
+int bound_udp_socket(int port);
+
 }  // namespace acomms::testing

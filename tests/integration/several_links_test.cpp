@@ -28,16 +28,6 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-int bound_udp_socket(int port) {
-  int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  addr.sin_port = htons(static_cast<uint16_t>(port));
-  EXPECT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)), 0);
-  return fd;
-}
-
 std::string udp_link(const std::string& name, int listen, int peer) {
   return "link { name: \"" + name + "\" driver { name: \"udp\" modem_id: 1 restart_min_s: 0.2 restart_max_s: 0.5\n" +
          "  udp { listen: \"127.0.0.1:" + std::to_string(listen) + "\" peers: \"127.0.0.1:" + std::to_string(peer) +
