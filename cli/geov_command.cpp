@@ -14,6 +14,7 @@
 #include "geov/fleet.h"
 #include "geov/http_server.h"
 #include "geov/map_site.h"
+#include "geov/tl_section.h"
 #include "global_options.h"
 #include "rpc_error.h"
 
@@ -31,6 +32,7 @@ struct ServeOptions {
   int max_connections = 64;
   double kml_refresh_s = 5;
   double poll_s = 1;
+  double max_period_h = 24;
 };
 
 std::string read_token(const std::string& path) {
@@ -62,9 +64,17 @@ void run_serve(const GlobalOptions& global, const ServeOptions& options) {
   site_options.tile_url = options.tile_url;
   site_options.attribution = options.attribution;
   site_options.kml_refresh_s = options.kml_refresh_s;
+  site_options.max_period_s = options.max_period_h * 3600;
   if (!options.mbtiles.empty()) site_options.mbtiles = std::make_shared<geov::MbTiles>(options.mbtiles);
 
   geov::Fleet fleet;
+  const std::vector<std::string> daemons = options.daemons.empty() ? std::vector{global.endpoint} : options.daemons;
+  // The environment comes from the first daemon: the buoy's, by the
+  // convention of --daemon's help.
+  GlobalOptions buoy = global;
+  buoy.endpoint = daemons.front();
+  auto sections = std::make_shared<geov::TlSection>(buoy, fleet);
+  site_options.section = [sections](const telemetry::Position& vehicle) { return sections->picture(vehicle); };
   geov::MapSite site(fleet, site_options);
   geov::HttpServer server({.listen = options.listen, .max_connections = options.max_connections},
                           [&site](const geov::HttpRequest& request, geov::HttpResponder& responder) {
@@ -77,7 +87,6 @@ void run_serve(const GlobalOptions& global, const ServeOptions& options) {
   }
 
   std::vector<std::unique_ptr<geov::DaemonFeed>> feeds;
-  const std::vector<std::string> daemons = options.daemons.empty() ? std::vector{global.endpoint} : options.daemons;
   for (const std::string& endpoint : daemons) {
     GlobalOptions daemon = global;
     daemon.endpoint = endpoint;
@@ -113,12 +122,14 @@ void add_geov_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* serve = geov->add_subcommand(
       "serve",
       "Serve the map page (built in: it needs no internet) with every vehicle's position, heading, depth, fix "
-      "age, track, link figures and queued messages, updated live; playback of a period; KML for Google Earth");
+      "age, track, link figures and queued messages, updated live; the transmission loss from the buoy towards a "
+      "vehicle; playback of a period; KML for Google Earth");
   serve->add_option("--listen", options.listen, "HOST:PORT to serve HTTP on (port 0: any free port)")
       ->capture_default_str();
   serve->add_option("--daemon", options.daemons,
                     "A daemon to follow: unix socket or tcp:HOST:PORT, with --ca/--cert/--key/--insecure as for "
-                    "every command; repeat for several (default: --socket)")
+                    "every command; repeat for several (default: --socket). The first is the buoy's: the page's "
+                    "transmission-loss section runs on its environment (acommsctl gram env)")
       ->type_name("SOCKET");
   serve->add_option("--token-file", options.token_file,
                     "A file whose first line is the token viewers must give (/?token=T, or Authorization: Bearer "
@@ -140,12 +151,18 @@ void add_geov_command(CLI::App& app, const GlobalOptions& global) {
   serve->add_option("--kml-refresh", options.kml_refresh_s, "Seconds between Google Earth's NetworkLink refreshes")
       ->check(CLI::Range(1.0, 3600.0))
       ->capture_default_str();
+  serve->add_option("--max-period", options.max_period_h,
+                    "Hours of positions one playback or history request may hold at most")
+      ->check(CLI::Range(0.01, 8760.0))
+      ->capture_default_str();
   serve->add_option("--poll", options.poll_s, "Seconds between polls of each daemon (tracks back-filled, queues)")
       ->check(CLI::Range(0.1, 60.0))
       ->capture_default_str();
   serve->footer(
-      "Open http://HOST:PORT/ in a browser. Google Earth: add /kml/network.kml (a NetworkLink that refreshes), "
-      "or save /kml/history.kml?from=-1h for the last hour with time stamps. Stop with Ctrl-C.\n\n"
+      "Open http://HOST:PORT/ in a browser: click a vehicle for the transmission loss from the buoy towards it "
+      "(/api/section?src=N); play back a period from a start to an end at a chosen speed. Google Earth: add "
+      "/kml/network.kml (a NetworkLink that refreshes), or save /kml/history.kml?from=-1h for the last hour with "
+      "time stamps. Stop with Ctrl-C.\n\n"
       "Examples:\n"
       "  acommsctl geov serve\n"
       "  acommsctl geov serve --daemon /run/acommsd/acommsd.sock --daemon tcp:buoy:50051 --ca ca.pem\n"

@@ -22,13 +22,14 @@
 #include "gram/transmission_loss.h"
 #include "gram_plot.h"
 #include "gram_service_command.h"
+#include "plot/axes.h"
 #include "rpc_error.h"  // UsageError
 
 namespace acomms::cli {
 namespace {
 
 struct GramOptions {
-  std::string ctd, env, png, at;
+  std::string ctd, env, png, at, receiver;
   std::string format = "csv";
   double bin_m = 1.0;
   double thin_mps = 0;
@@ -69,7 +70,24 @@ void write_stdout(const std::string& bytes) {
     throw std::runtime_error("cannot write the output: " + std::string(std::strerror(errno)));
 }
 
+// "RANGE_M,DEPTH_M" of --at and --receiver.
+std::pair<double, double> range_depth(const std::string& option, const std::string& text) {
+  const auto parts = split_commas(text);
+  try {
+    if (parts.size() != 2) throw std::invalid_argument(text);
+    return {std::stod(parts[0]), std::stod(parts[1])};
+  } catch (const std::exception&) {
+    throw UsageError(option + " \"" + text + "\": give RANGE_M,DEPTH_M, e.g. " + option + " 2000,50");
+  }
+}
+
 void run_tl(const GramOptions& o) {
+  TlMarks marks;
+  if (!o.receiver.empty()) {
+    if (o.png.empty()) throw UsageError("--receiver marks a receiver on the picture: give --png too");
+    const auto [range, depth] = range_depth("--receiver", o.receiver);
+    marks.receiver = TlReceiver{range, depth, "receiver, " + plot::tick_label(depth, 0.1) + " m"};
+  }
   const gram::Environment env = load_env(o.env);
   const bool shd = o.format == "shd";
   if (shd && o.png.empty() && ::isatty(STDOUT_FILENO))
@@ -80,7 +98,7 @@ void run_tl(const GramOptions& o) {
   const auto tl = gram::compute_transmission_loss(env, run);
   report_beams(env, tl.beam_count);
   if (!o.png.empty()) {
-    write_tl_png(o.png, tl, env, o.env);
+    write_tl_png(o.png, tl, env, o.env, marks);
     return;
   }
   if (shd) {
@@ -99,15 +117,7 @@ void run_tl(const GramOptions& o) {
 }
 
 void run_arrivals(const GramOptions& o) {
-  const auto parts = split_commas(o.at);
-  double range = 0, depth = 0;
-  try {
-    if (parts.size() != 2) throw std::invalid_argument(o.at);
-    range = std::stod(parts[0]);
-    depth = std::stod(parts[1]);
-  } catch (const std::exception&) {
-    throw UsageError("--at \"" + o.at + "\": give RANGE_M,DEPTH_M, e.g. --at 2000,50");
-  }
+  const auto [range, depth] = range_depth("--at", o.at);
   gram::Environment env = load_env(o.env);
   // Keep the file's beam count: the automatic rule depends on its receivers.
   if (env.beam_count() == 0) env.set_beam_count(gram::beam_count(env));
@@ -168,11 +178,15 @@ CLI::App* add_gram_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::IsMember({"csv", "shd"}))
       ->excludes(png)
       ->capture_default_str();
+  tl->add_option("--receiver", options.receiver,
+                 "With --png: mark a receiver (a vehicle) at this range and depth, with its depth across the field")
+      ->type_name("RANGE_M,DEPTH_M");
   tl->add_option("--threads", options.threads, "Threads (0: all cores); the result is the same")->capture_default_str();
   tl->footer(
       "Examples:\n"
       "  acommsctl gram tl --env examples/glint10.env > tl.csv\n"
-      "  acommsctl gram tl --env examples/glint10.env --png tl.png");
+      "  acommsctl gram tl --env examples/glint10.env --png tl.png\n"
+      "  acommsctl gram tl --env examples/glint10.env --png tl.png --receiver 3000,40");
   tl->callback([] { run_tl(options); });
 
   CLI::App* arrivals = gram->add_subcommand(

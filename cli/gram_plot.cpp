@@ -54,7 +54,40 @@ void draw_colour_bar(plot::Canvas& canvas, double best) {
   canvas.text(kBarRight + 46, (kTop + kBottom) / 2.0, "TL (dB re 1 m)", 14, plot::kBlack, plot::Align::kCentre, true);
 }
 
+plot::Frame field_frame(const gram::TransmissionLoss& tl, const gram::Environment& env) {
+  const auto [r_min, r_max] = std::minmax_element(tl.range_m.begin(), tl.range_m.end());
+  const double z_top = env.sound_speed(0).depth_m();
+  const double z_bottom = env.sound_speed(env.sound_speed_size() - 1).depth_m();
+  return {kFieldLeft, kTop, kFieldRight, kBottom, *r_min / 1000, *r_max / 1000, z_top, z_bottom};
+}
+
+// A filled shape ringed in white, `inner` pixels from its centre to its edge.
+void ringed(plot::Canvas& canvas, int cx, int cy, int inner, bool round) {
+  for (int r = inner + 3; r >= 0; --r)
+    for (int dy = -r; dy <= r; ++dy)
+      for (int dx = -r; dx <= r; ++dx)
+        if (!round || dx * dx + dy * dy <= r * r) canvas.set(cx + dx, cy + dy, r > inner ? plot::kWhite : plot::kBlack);
+}
+
+// Labels on the field stay inside it: to the right of the mark, or to its
+// left near the right edge.
+void mark_label(plot::Canvas& canvas, int x, int y, const std::string& label) {
+  const double width = plot::text_width(label, 12);
+  const bool left = x + 10 + width > kFieldRight;
+  const double tx = left ? x - 10 : x + 10;
+  const plot::Align align = left ? plot::Align::kRight : plot::Align::kLeft;
+  const double x0 = left ? tx - width : tx;
+  canvas.fill(static_cast<int>(x0) - 2, y - 8, static_cast<int>(x0 + width) + 2, y + 7, plot::kWhite);
+  canvas.text(tx, y, label, 12, plot::kBlack, align);
+}
+
 }  // namespace
+
+std::pair<int, int> tl_pixel(const gram::TransmissionLoss& tl, const gram::Environment& env, double range_m,
+                             double depth_m) {
+  const plot::Frame f = field_frame(tl, env);
+  return {f.x_of(range_m / 1000), f.y_of(depth_m)};
+}
 
 Rgb tl_colour(double db, double best_db) { return colour((db - best_db) / kDynamicRangeDb); }
 int tl_colour_bar_x() { return (kBarLeft + kBarRight) / 2; }
@@ -62,7 +95,8 @@ int tl_colour_bar_y(double db, double best_db) {
   return kTop + static_cast<int>(std::lround((db - best_db) / kDynamicRangeDb * (kBottom - kTop)));
 }
 
-plot::Canvas draw_tl(const gram::TransmissionLoss& tl, const gram::Environment& env, const std::string& input) {
+plot::Canvas draw_tl(const gram::TransmissionLoss& tl, const gram::Environment& env, const std::string& input,
+                     const TlMarks& marks) {
   if (tl.irregular) throw std::runtime_error("--png needs a rectilinear receiver grid");
   plot::Canvas canvas(kWidth, kHeight);
   double best = INFINITY;
@@ -84,15 +118,20 @@ plot::Canvas draw_tl(const gram::TransmissionLoss& tl, const gram::Environment& 
       const double v = tl.tl_db[row_of[y] * nr + column_of[x]];
       canvas.set(kFieldLeft + x, kTop + y, std::isfinite(v) ? colour((v - best) / kDynamicRangeDb) : kShadow);
     }
-  const plot::Frame field{kFieldLeft, kTop, kFieldRight, kBottom, *r_min / 1000, *r_max / 1000, z_top, z_bottom};
+  const plot::Frame field = field_frame(tl, env);
   plot::draw_axes(canvas, field, "Range (km)", "Depth (m)");
+  // The receiver first: its depth as a dotted line across the field, then
+  // its mark, so that the source's mark stays whole when they are close.
+  if (marks.receiver) {
+    const int rx = field.x_of(marks.receiver->range_m / 1000), ry = field.y_of(marks.receiver->depth_m);
+    for (int x = kFieldLeft; x <= kFieldRight; x += 6) canvas.line(x, ry, std::min(x + 2, kFieldRight), ry, plot::kWhite);
+    ringed(canvas, rx, ry, 4, false);
+    mark_label(canvas, rx, ry - 14, marks.receiver->label);
+  }
   // The source: a dot ringed in white at range 0 and its depth.
   const int sx = field.x_of(0), sy = field.y_of(env.source_depth_m());
-  for (int r = 7; r >= 0; --r)
-    for (int dy = -r; dy <= r; ++dy)
-      for (int dx = -r; dx <= r; ++dx)
-        if (dx * dx + dy * dy <= r * r) canvas.set(sx + dx, sy + dy, r > 4 ? plot::kWhite : plot::kBlack);
-  canvas.text(sx + 10, sy, "source", 12, plot::kBlack);
+  ringed(canvas, sx, sy, 4, true);
+  mark_label(canvas, sx, sy, marks.source);
   draw_colour_bar(canvas, best);
 
   // The profile: c across, the same depths down.
@@ -118,8 +157,8 @@ plot::Canvas draw_tl(const gram::TransmissionLoss& tl, const gram::Environment& 
 }
 
 void write_tl_png(const std::string& path, const gram::TransmissionLoss& tl, const gram::Environment& env,
-                  const std::string& input) {
-  draw_tl(tl, env, input).write_png(path);
+                  const std::string& input, const TlMarks& marks) {
+  draw_tl(tl, env, input, marks).write_png(path);
 }
 
 plot::Canvas draw_objective(const gram::DepthObjectiveReply& reply, const std::string& title) {

@@ -358,9 +358,9 @@ _acommsctl() {
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --env|--format|--threads|--timeout) COMPREPLY=(); return ;;
+        --env|--format|--receiver|--threads|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --env --png --format --threads --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --env --png --format --receiver --threads --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "gram arrivals")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -425,9 +425,9 @@ _acommsctl() {
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --listen|--tiles|--attribution|--max-connections|--kml-refresh|--poll|--timeout) COMPREPLY=(); return ;;
+        --listen|--tiles|--attribution|--max-connections|--kml-refresh|--max-period|--poll|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --listen --daemon --token-file --insecure-http --tiles --mbtiles --attribution --max-connections --kml-refresh --poll --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --listen --daemon --token-file --insecure-http --tiles --mbtiles --attribution --max-connections --kml-refresh --max-period --poll --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "completion")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;

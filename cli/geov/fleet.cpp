@@ -149,6 +149,24 @@ double Fleet::last_time(int32_t src) const {
   return it == vehicles_.end() || it->second.track.empty() ? 0 : it->second.track.rbegin()->first;
 }
 
+std::optional<telemetry::Position> Fleet::last_position(int32_t src) const {
+  std::lock_guard lock(mutex_);
+  auto it = vehicles_.find(src);
+  if (it == vehicles_.end() || it->second.track.empty()) return std::nullopt;
+  return it->second.track.rbegin()->second;
+}
+
+std::optional<std::pair<double, double>> Fleet::span(std::optional<int32_t> src) const {
+  std::lock_guard lock(mutex_);
+  std::optional<std::pair<double, double>> out;
+  for (const auto& [id, vehicle] : vehicles_) {
+    if ((src && *src != id) || vehicle.track.empty()) continue;
+    const double first = vehicle.track.begin()->first, last = vehicle.track.rbegin()->first;
+    out = out ? std::pair{std::min(out->first, first), std::max(out->second, last)} : std::pair{first, last};
+  }
+  return out;
+}
+
 std::set<int32_t> Fleet::vehicles() const {
   std::lock_guard lock(mutex_);
   std::set<int32_t> out;

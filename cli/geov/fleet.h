@@ -57,6 +57,10 @@ class Fleet {
   void set_queued(const std::string& daemon, std::map<int32_t, std::vector<QueuedToVehicle>> by_dest);
 
   double last_time(int32_t src) const;  // 0: no position yet
+  std::optional<telemetry::Position> last_position(int32_t src) const;
+  // The times of the first and last position held (of every vehicle, or of
+  // `src`); none without positions.
+  std::optional<std::pair<double, double>> span(std::optional<int32_t> src = std::nullopt) const;
   std::set<int32_t> vehicles() const;   // those with a position
   bool has_vehicle(int32_t src) const;
 

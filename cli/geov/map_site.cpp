@@ -1,6 +1,7 @@
 #include "map_site.h"
 
 #include <charconv>
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -115,6 +116,7 @@ void MapSite::handle(const HttpRequest& request, HttpResponder& responder) {
     }
     if (path == "/api/fleet") return responder.send(200, kJson, fleet_.snapshot_json(util::unix_seconds_now()));
     if (path == "/api/history") return history(request, responder, false);
+    if (path == "/api/section") return section(request, responder);
     if (path == "/events") return events(request, responder);
     if (path == "/kml/network.kml") return network_link(request, responder);
     if (path == "/kml/live.kml") return live_kml(responder);
@@ -128,12 +130,32 @@ void MapSite::handle(const HttpRequest& request, HttpResponder& responder) {
 
 void MapSite::history(const HttpRequest& request, HttpResponder& responder, bool kml) {
   const double now = util::unix_seconds_now();
-  const double from = time_param(request, "from", 0, now);
-  const double to = time_param(request, "to", now, now);
+  const bool chosen = param(request, "from") || param(request, "to");
+  double from = time_param(request, "from", -std::numeric_limits<double>::infinity(), now);
+  double to = time_param(request, "to", now, now);
   if (from > to) {
     throw HttpError{400, "from (" + json_number(from) + ") is after to (" + json_number(to) + ")"};
   }
   const std::optional<int32_t> src = src_param(request, fleet_);
+  const auto held = fleet_.span(src);
+  if (!held) {
+    if (chosen) throw HttpError{400, "no positions held yet: the period has nothing to show"};
+    from = to = now;
+  } else {
+    if (to < held->first || from > held->second) {
+      const std::string start = std::isfinite(from) ? kml_time(from) : "the beginning";
+      throw HttpError{400, "the period " + start + " to " + kml_time(to) +
+                               " holds no positions: those held run from " + kml_time(held->first) + " to " +
+                               kml_time(held->second)};
+    }
+    from = std::max(from, held->first);
+    to = std::min(to, held->second);
+    if (to - from > options_.max_period_s) {
+      throw HttpError{400, "the period holds " + json_number(std::round((to - from) / 36) / 100) +
+                               " h of positions; at most " + json_number(options_.max_period_s / 3600) +
+                               " h at once (--max-period): choose a shorter one"};
+    }
+  }
   const VehicleTracks tracks = fleet_.history(from, to, src);
   if (kml) {
     if (!kml_placeable(tracks)) {
@@ -156,6 +178,21 @@ void MapSite::history(const HttpRequest& request, HttpResponder& responder, bool
     out += "]}";
   }
   responder.send(200, kJson, out + "]}");
+}
+
+void MapSite::section(const HttpRequest& request, HttpResponder& responder) {
+  const std::optional<int32_t> src = src_param(request, fleet_);
+  if (!src) throw HttpError{400, "src: give the vehicle's modem id, e.g. /api/section?src=2"};
+  if (!options_.section) throw HttpError{503, "no environment: this server asks no daemon's model"};
+  const std::optional<telemetry::Position> vehicle = fleet_.last_position(*src);
+  if (!vehicle) throw HttpError{404, "no position of vehicle " + std::to_string(*src) + " yet"};
+  try {
+    const SectionPicture picture = options_.section(*vehicle);
+    responder.send(200, "image/png", picture.png,
+                   "X-Acomms-Range-M: " + json_number(std::round(picture.range_m * 10) / 10) + "\r\n");
+  } catch (const SectionRefusal& refusal) {
+    throw HttpError{refusal.status, refusal.text};
+  }
 }
 
 void MapSite::live_kml(HttpResponder& responder) {

@@ -132,4 +132,14 @@ void Canvas::write_png(const std::string& path) const {
     throw std::runtime_error("cannot write " + path);
 }
 
+std::string Canvas::png() const {
+  std::string out;
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+  };
+  if (!stbi_write_png_to_func(append, &out, width_, height_, 3, pixels_.data(), width_ * 3))
+    throw std::runtime_error("cannot encode the picture as PNG");
+  return out;
+}
+
 }  // namespace acomms::cli::plot

@@ -41,6 +41,8 @@ class Canvas {
             bool upwards = false);
   // Throws std::runtime_error naming `path` when it cannot be written.
   void write_png(const std::string& path) const;
+  // The PNG file's bytes (the map server sends them without a file).
+  std::string png() const;
 
  private:
   void blend(int x, int y, Rgb c, double alpha);

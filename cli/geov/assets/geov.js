@@ -1,7 +1,9 @@
 // The fleet map of `acommsctl geov serve`: the snapshot from /api/fleet,
 // then every change from /events (server-sent events, resumed by id after a
-// reconnect), and playback of a period from /api/history. Served from the
-// binary with Leaflet; it loads nothing from elsewhere.
+// reconnect), playback of a chosen period from /api/history, and the
+// transmission loss from the buoy towards a selected vehicle (/api/section,
+// a PNG). Served from the binary with Leaflet; it loads nothing from
+// elsewhere.
 'use strict';
 (function () {
   const token = new URLSearchParams(location.search).get('token');
@@ -20,6 +22,7 @@
     epoch: 0, id: 0, updates: 0, resets: 0, mode: 'live', connected: false,
     vehicles: new Map(), config: null, source: null,
     playback: { from: 0, to: 0, t: 0, playing: false, data: null, timer: null },
+    section: { src: null, status: 0, bytes: 0, range_m: null, error: '', loads: 0, busy: false, url: null },
   };
   let map = null, useLatLon = false, grid = null, gridStep = 0;
 
@@ -150,6 +153,7 @@
     }
     if (!v.marker) {
       v.marker = L.marker(last, { icon: arrowIcon(v.src, heading) }).bindTooltip('node ' + v.src).addTo(map);
+      v.marker.on('click', () => selectVehicle(v.src));
     } else {
       v.marker.setLatLng(last);
       v.marker.setIcon(arrowIcon(v.src, heading));
@@ -171,7 +175,7 @@
                                                      : fixed(last[X], 0) + ', ' + fixed(last[Y], 0) + ' m';
       const link = s.link || {};
       const queued = (s.queued || []).map((q) => q.type + (q.in_flight ? ' (in flight)' : '')).join('\n');
-      rows.push('<tr data-src="' + v.src + '"><td><span class="swatch" style="background:' + colour(v.src) +
+      rows.push('<tr data-src="' + v.src + '"' + (v.src === state.section.src ? ' class="selected"' : '') + '><td><span class="swatch" style="background:' + colour(v.src) +
                 '"></span>' + v.src + '</td><td>' + where + '</td><td>' + fixed(s.heading, 0) + '</td><td>' +
                 (last ? fixed(last[DEPTH], 1) : '–') + '</td><td>' + (last ? age(last[T]) : '–') + '</td><td>' +
                 fixed(link.snr_in_db, 1) + '</td><td>' + (s.link ? link.rate : '–') + '</td><td>' +
@@ -267,20 +271,83 @@
     setTimeout(() => connectAll().catch(retryLater), 2000);
   }
 
-  // ---- playback
-  function playbackRange() {
-    const minutes = Math.max(1, Number($('pb-minutes').value) || 10);
+  // ---- the environment towards the selected vehicle: the server runs the
+  // buoy's model and draws it (the picture of `gram tl --png`); the page
+  // shows it, or the server's reason for not having one.
+  function selectVehicle(src) {
+    state.section.src = src;
+    $('section-node').textContent = 'towards node ' + src;
+    renderPanel();
+    loadSection();
+  }
+  async function loadSection() {
+    const sec = state.section;
+    if (sec.src === null || sec.busy) return;
+    sec.busy = true;
+    const src = sec.src;
+    try {
+      const response = await fetch(url('/api/section', { src: src }));
+      sec.status = response.status;
+      if (!response.ok) {
+        sec.error = response.status + ': ' + (await response.text()).trim();
+        sec.bytes = 0;
+        $('section-note').textContent = sec.error;
+        $('section-img').hidden = true;
+        return;
+      }
+      const blob = await response.blob();
+      if (sec.url) URL.revokeObjectURL(sec.url);
+      sec.url = URL.createObjectURL(blob);
+      sec.bytes = blob.size;
+      sec.error = '';
+      sec.range_m = Number(response.headers.get('X-Acomms-Range-M'));
+      sec.loads += 1;
+      $('section-img').src = sec.url;
+      $('section-img').hidden = false;
+      $('section-note').textContent = 'node ' + src + ' is ' + sec.range_m.toFixed(0) +
+        ' m from the buoy (drawn ' + new Date().toISOString().slice(11, 19) + ' UTC)';
+    } catch (e) {
+      sec.error = String(e.message || e);
+      $('section-note').textContent = sec.error;
+    } finally {
+      sec.busy = false;
+    }
+  }
+
+  // ---- playback of a chosen period: the operator's start and end (UTC),
+  // checked by the server, which names what is wrong with them.
+  const toInput = (t) => new Date(t * 1000).toISOString().slice(0, 19);
+  const fromInput = (text) => (text ? Date.parse(text + (text.length === 16 ? ':00Z' : 'Z')) / 1000 : NaN);
+  function recentPeriod() {
     const to = Date.now() / 1000;
-    return { from: to - minutes * 60, to: to };
+    $('pb-from').value = toInput(to - 600);
+    $('pb-to').value = toInput(to);
+    kmlHistoryLink();
+  }
+  function playbackRange() {
+    if (!$('pb-from').value || !$('pb-to').value) recentPeriod();
+    return { from: fromInput($('pb-from').value), to: fromInput($('pb-to').value) };
   }
   function kmlHistoryLink() {
     const r = state.mode === 'playback' ? state.playback : playbackRange();
+    if (!isFinite(r.from) || !isFinite(r.to)) return;
     $('kml-history').href = url('/kml/history.kml', { from: r.from.toFixed(3), to: r.to.toFixed(3) });
+  }
+  function heldSpan() {
+    let first = Infinity, last = -Infinity;
+    for (const v of state.vehicles.values()) {
+      if (!v.track.length) continue;
+      first = Math.min(first, v.track[0][T]);
+      last = Math.max(last, v.track[v.track.length - 1][T]);
+    }
+    $('pb-held').textContent = isFinite(first) ? 'positions held from ' + toInput(first) + ' to ' + toInput(last) + ' UTC' : '';
   }
   async function startPlayback() {
     const r = playbackRange();
+    if (!isFinite(r.from) || !isFinite(r.to)) { showError('playback: give a start and an end'); return; }
     const response = await fetch(url('/api/history', { from: r.from.toFixed(3), to: r.to.toFixed(3) }));
-    if (!response.ok) { showError('/api/history: ' + response.status + ' ' + (await response.text())); return; }
+    if (!response.ok) { showError('playback: ' + (await response.text()).trim()); return; }
+    showError('');
     const history = await response.json();
     const pb = state.playback;
     pb.from = history.from; pb.to = history.to; pb.t = history.from;
@@ -344,16 +411,26 @@
       pb.t = pb.from + (pb.to - pb.from) * Number($('pb-slider').value) / 1000;
       renderPlayback();
     };
-    $('pb-minutes').onchange = kmlHistoryLink;
+    $('pb-from').onchange = kmlHistoryLink;
+    $('pb-to').onchange = kmlHistoryLink;
+    $('pb-recent').onclick = recentPeriod;
+    document.querySelector('#vehicles tbody').onclick = (e) => {
+      const row = e.target.closest('tr[data-src]');
+      if (row) selectVehicle(Number(row.dataset.src));
+    };
     $('kml-live').href = url('/kml/network.kml');
-    kmlHistoryLink();
+    recentPeriod();
   }
 
   // What a test (or a curious operator, in the console) can ask the page.
   window.geov = {
     state: state,
     startPlayback: startPlayback,
+    selectVehicle: selectVehicle,
     summary: () => ({
+      error: $('error').textContent,
+      section: { src: state.section.src, status: state.section.status, bytes: state.section.bytes,
+                 range_m: state.section.range_m, error: state.section.error, loads: state.section.loads },
       mode: state.mode, connected: state.connected, epoch: state.epoch, id: state.id, updates: state.updates,
       resets: state.resets, playback: { from: state.playback.from, to: state.playback.to, t: state.playback.t,
                                         playing: state.playback.playing },
@@ -381,7 +458,10 @@
   function main() {
     wireControls();
     connectAll().catch(retryLater);
-    setInterval(() => { if (state.mode === 'live') renderPanel(); }, 1000);
+    setInterval(() => { if (state.mode === 'live') { renderPanel(); heldSpan(); } }, 1000);
+    // The vehicle moves: its section is asked for again (the server reuses
+    // its picture while the vehicle is about where it was).
+    setInterval(() => { if (state.mode === 'live') loadSection(); }, 30000);
   }
   main();
 })();

@@ -79,6 +79,50 @@ TEST(TlPicture, TheTitleNamesTheInputFileAndTheLongerTitleTakesMoreRoom) {
   EXPECT_GT(long_name, short_name + 100);
 }
 
+TEST(TlPicture, TheSourceAndTheReceiverAreMarkedAtTheirRangeAndDepth) {
+  TlMarks marks;
+  marks.source = "buoy, node 3";
+  marks.receiver = TlReceiver{3000, 60, "node 2, 60 m"};
+  const plot::Canvas c = draw_tl(field(), environment(), "/data/test.env", marks);
+  const plot::Canvas plain = draw_tl(field(), environment(), "/data/test.env");
+  // The source: a black dot ringed in white at range 0 and its depth (20 m).
+  const auto [sx, sy] = tl_pixel(field(), environment(), 0, 20);
+  EXPECT_EQ(c.at(sx, sy), plot::kBlack);
+  EXPECT_EQ(c.at(sx, sy - 6), plot::kWhite);
+  // The receiver: a black square ringed in white at 3 km and 60 m, which
+  // the picture without it does not have.
+  const auto [rx, ry] = tl_pixel(field(), environment(), 3000, 60);
+  EXPECT_EQ(rx, 80 + 680 * 3 / 5);
+  EXPECT_EQ(ry, 40 + 420 * 60 / 100);
+  for (int d : {-4, 0, 4}) EXPECT_EQ(c.at(rx + d, ry + d), kTlReceiverMark) << d;
+  EXPECT_EQ(c.at(rx + 6, ry + 6), plot::kWhite);
+  EXPECT_EQ(plain.at(rx, ry), tl_colour(41.3 + 58.7 * 30 / 50.0, 41));
+  // Its depth across the field: dotted white, on both sides of the mark.
+  int white_left = 0, white_right = 0;
+  for (int x = 82; x < rx - 10; ++x) white_left += c.at(x, ry) == plot::kWhite;
+  for (int x = rx + 10; x < 758; ++x) white_right += c.at(x, ry) == plot::kWhite;
+  EXPECT_GT(white_left, 60);
+  EXPECT_GT(white_right, 20);
+  // Each is labelled: dark text (anti-aliased) on a white ground beside
+  // the mark, where the field would be.
+  auto label = [&](int x0, int y0) {
+    int ground = 0, ink = 0;
+    for (int y = y0 - 5; y <= y0 + 5; ++y)
+      for (int x = x0; x < x0 + 50; ++x) {
+        const plot::Rgb p = c.at(x, y);
+        ground += p == plot::kWhite;
+        ink += p.r + p.g + p.b < 300;
+      }
+    return std::pair{ground, ink};
+  };
+  const auto [source_ground, source_ink] = label(sx + 12, sy);
+  const auto [receiver_ground, receiver_ink] = label(rx + 12, ry - 14);
+  EXPECT_GT(source_ground, 150);
+  EXPECT_GT(source_ink, 30);
+  EXPECT_GT(receiver_ground, 150);
+  EXPECT_GT(receiver_ink, 30);
+}
+
 TEST(TlPicture, TextWidthGrowsWithTheTextAndItsSize) {
   EXPECT_GT(plot::text_width("Range (km)", 14), plot::text_width("Range", 14));
   EXPECT_NEAR(plot::text_width("Range", 28), 2 * plot::text_width("Range", 14), 1.0);
