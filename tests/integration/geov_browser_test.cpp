@@ -8,13 +8,16 @@
 // It checks: both vehicles' markers and tracks are drawn and move as new
 // positions arrive; the map server restarts and the page reconnects by
 // itself and ends holding every position (no gap); every resource the page loaded came from the map
-// server; playback of the last minutes runs to its end with every
-// position of the period drawn; the NetworkLink and the history KML parse
+// server; a vehicle clicked shows the buoy's transmission-loss section
+// towards it, the vehicle marked at its depth; playback of a chosen period
+// (bad ones refused with the server's reason) runs through it on the
+// slider to its end with every position of the period drawn, and the
+// slider moved back shows the positions up to there; the NetworkLink and the history KML parse
 // as KML 2.2 and hold every position the topside's Track holds. A
 // screenshot is kept as geov_map.png beside this test's binary.
 //
 // Real time, bounded: the telemetry travels in 2.5 s TDMA slots; the whole
-// test takes about 40 s. Skipped, with one message, only when chromium or
+// test takes about 45 s. Skipped, with one message, only when chromium or
 // chromedriver is not installed (CI installs both).
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
@@ -23,8 +26,10 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <ctime>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -47,6 +52,24 @@ constexpr int kTopside = 3;
 const std::vector<int> kNodes = {1, 2, kTopside};
 
 std::string name(int id) { return id == kTopside ? "topside" : "vehicle" + std::to_string(id); }
+
+// 60 m of water over sand, the buoy's modem at 5 m; beams fixed so that a
+// section runs in a fraction of a second.
+constexpr double kWaterDepthM = 60;
+const char* const kBuoyEnvironment =
+    "gram { base { title: \"test shelf\" frequency_hz: 10000 source_depth_m: 5 beam_count: 400\n"
+    "  launch_angle_min_deg: -80 launch_angle_max_deg: 80 box_depth_m: 70 box_range_m: 1000\n"
+    "  sound_speed { depth_m: 0 speed_mps: 1510 } sound_speed { depth_m: 20 speed_mps: 1505 }\n"
+    "  sound_speed { depth_m: 60 speed_mps: 1500 }\n"
+    "  bottom { kind: HALF_SPACE half_space { speed_mps: 1700 density_ratio: 1.9 attenuation_np_per_m: 0.001 } } } }\n";
+
+// "2026-11-27T04:20:22": what the page's datetime-local fields hold (UTC).
+std::string utc_field(double t) {
+  const std::time_t s = static_cast<std::time_t>(std::floor(t));
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", std::gmtime(&s));
+  return text;
+}
 
 // Where vehicle `id` is at `s` seconds into the test: circles of 60 m and
 // 90 m around two points, so that both markers move every second.
@@ -116,6 +139,8 @@ class GeovBrowser : public ::testing::Test {
       config << " max_range_m: 400 }\n"
              << "telemetry { tau_s: 1 ttl_s: 600 datum { lat: 41.52 lon: -70.67 }"
              << (id == kTopside ? "" : " receiver: 3") << " }\n";
+      // The buoy's environment, for the page's transmission-loss section.
+      if (id == kTopside) config << kBuoyEnvironment;
     }
     for (int id : kNodes) {
       daemons_[id] = std::make_unique<ChildProcess>(
@@ -322,24 +347,112 @@ TEST_F(GeovBrowser, BothVehiclesMoveLivePlayBackAndExportAsKml) {
   EXPECT_GE(resources.list_value().values_size(), 4);
   for (const Value& r : resources.list_value().values()) EXPECT_EQ(r.string_value().rfind(origin, 0), 0u) << r.string_value();
 
-  step("playback");
-  // 4. The last 5 minutes played back at 60x: to the end, every position drawn.
-  browser.execute("document.getElementById('pb-minutes').value = '5'; document.getElementById('pb-speed').value = '60'; "
-                  "document.getElementById('pb-play').click(); return true;");
+  step("environment");
+  // 4. The environment: vehicle 2 clicked, the buoy's transmission-loss
+  // section towards it is shown, the vehicle marked at its depth (20 m) at
+  // the range the server names, the buoy at its 5 m.
+  int status = 0;
+  http_get(port, "/api/section?src=9", &status);
+  EXPECT_EQ(status, 404);
+  browser.execute("document.querySelector('#vehicles tbody tr[data-src=\"2\"]').click(); return true;");
+  ASSERT_TRUE(wait_until([&] { return field(field(summary(browser), "section"), "loads").number_value() >= 1; }, 20s, 200ms))
+      << browser.execute("return JSON.stringify(geov.summary().section);").string_value() << "\n" << map_->stderr_text();
+  const Value picture = parse_json(browser.execute(R"(
+      const img = document.getElementById('section-img');
+      const range = geov.summary().section.range_m;
+      const length = Math.max(200, Math.ceil(range * 1.25 / 10) * 10);
+      const c = document.createElement('canvas');
+      c.width = img.naturalWidth; c.height = img.naturalHeight;
+      const g = c.getContext('2d');
+      g.drawImage(img, 0, 0);
+      const at = (x, y) => Array.from(g.getImageData(x, y, 1, 1).data.slice(0, 3));
+      const x = Math.round(80 + 680 * range / length), y = Math.round(40 + 420 * 20 / )" +
+                                                   std::to_string(kWaterDepthM) + R"();
+      return JSON.stringify({ w: img.naturalWidth, h: img.naturalHeight, shown: !img.hidden && img.width > 0,
+                              range: range, mark: at(x, y), ring: at(x + 6, y + 6),
+                              buoy: at(80, Math.round(40 + 420 * 5 / )" + std::to_string(kWaterDepthM) + R"()),
+                              status: geov.summary().section.status });)").string_value());
+  EXPECT_EQ(field(picture, "status").number_value(), 200);
+  EXPECT_EQ(field(picture, "w").number_value(), 1100);
+  EXPECT_EQ(field(picture, "h").number_value(), 520);
+  EXPECT_TRUE(field(picture, "shown").bool_value());
+  const double range = field(picture, "range").number_value();
+  EXPECT_GT(range, 20);
+  EXPECT_LT(range, 260);  // vehicle 2 circles 90 m around (120, 40)
+  for (const char* mark : {"mark", "buoy"}) {
+    for (const Value& channel : field(picture, mark).list_value().values()) EXPECT_EQ(channel.number_value(), 0) << mark;
+  }
+  for (const Value& channel : field(picture, "ring").list_value().values()) EXPECT_EQ(channel.number_value(), 255);
+
+  step("playback of a chosen period");
+  // 5. A chosen period, [t0 + 3 s, t0 + 13 s], at 5x: the slider and the
+  // clock run through it, and at its end every position of the period is
+  // drawn, none after it; the slider moved back to the middle shows the
+  // positions up to the middle. Bad periods are refused with the server's
+  // reason on the page.
+  auto set_period = [&](double from, double to, int speed) {
+    browser.execute("document.getElementById('pb-from').value = '" + utc_field(from) +
+                    "'; document.getElementById('pb-to').value = '" + utc_field(to) +
+                    "'; document.getElementById('pb-speed').value = '" + std::to_string(speed) + "'; return true;");
+  };
+  set_period(t0_ + 13, t0_ + 3, 5);
+  browser.execute("document.getElementById('pb-play').click(); return true;");
+  EXPECT_TRUE(wait_until([&] { return field(summary(browser), "error").string_value().find("is after to") != std::string::npos; }, 5s, 100ms))
+      << field(summary(browser), "error").string_value();
+  set_period(t0_ - 86400 * 400, t0_ - 86400 * 399, 5);
+  browser.execute("document.getElementById('pb-play').click(); return true;");
+  EXPECT_TRUE(wait_until([&] { return field(summary(browser), "error").string_value().find("holds no positions") != std::string::npos; }, 5s, 100ms))
+      << field(summary(browser), "error").string_value();
+  EXPECT_EQ(field(summary(browser), "mode").string_value(), "live");
+
+  const double from = std::floor(t0_) + 3, to = std::floor(t0_) + 13;
+  set_period(from, to, 5);
+  browser.execute("document.getElementById('pb-play').click(); return true;");
   ASSERT_TRUE(wait_until([&] { return field(summary(browser), "mode").string_value() == "playback"; }, 5s));
+  EXPECT_EQ(field(summary(browser), "error").string_value(), "");
+  // Under way: the clock inside the period, the slider between its ends.
   ASSERT_TRUE(wait_until(
       [&] {
-        const Value now = summary(browser);
-        const Value& pb = field(now, "playback");
+        const Value pb = field(summary(browser), "playback");
+        const double t = field(pb, "t").number_value();
+        const double slider = std::stod(browser.execute("return document.getElementById('pb-slider').value;").string_value());
+        return field(pb, "playing").bool_value() && t > field(pb, "from").number_value() + 1 &&
+               t < field(pb, "to").number_value() - 1 && slider > 0 && slider < 1000;
+      },
+      5s, 50ms))
+      << browser.execute("return JSON.stringify(geov.summary());").string_value();
+  ASSERT_TRUE(wait_until(
+      [&] {
+        const Value pb = field(summary(browser), "playback");
         return !field(pb, "playing").bool_value() && field(pb, "t").number_value() >= field(pb, "to").number_value();
       },
-      15s, 250ms))
+      10s, 200ms))
       << browser.execute("return JSON.stringify(geov.summary());").string_value();
+  const Value period = parse_json(http_get(port, "/api/history?from=" + std::to_string(from) + "&to=" + std::to_string(to)));
   const Value played = summary(browser);
+  EXPECT_GE(field(field(played, "playback"), "from").number_value(), from);
+  EXPECT_LE(field(field(played, "playback"), "to").number_value(), to);
+  EXPECT_EQ(browser.execute("return document.getElementById('pb-slider').value;").string_value(), "1000");
+  std::map<int, std::vector<double>> times;  // of the period's positions, by vehicle
+  for (const Value& v : field(period, "vehicles").list_value().values()) {
+    for (const Value& p : field(v, "track").list_value().values()) {
+      times[static_cast<int>(field(v, "src").number_value())].push_back(p.list_value().values(0).number_value());
+    }
+  }
   for (int src : {1, 2}) {
-    const double drawn = field(*vehicle(played, src), "drawn").number_value();
-    EXPECT_GE(drawn, field(*vehicle(first, src), "drawn").number_value()) << src;
-    EXPECT_GE(drawn, 2) << src;
+    ASSERT_GE(times[src].size(), 5u) << src;
+    EXPECT_EQ(field(*vehicle(played, src), "drawn").number_value(), times[src].size()) << src;
+  }
+  // The slider to the middle: the positions up to the middle of the period.
+  browser.execute("const s = document.getElementById('pb-slider'); s.value = '500'; "
+                  "s.dispatchEvent(new Event('input')); return true;");
+  const Value middle = summary(browser);
+  const double t_mid = field(field(middle, "playback"), "t").number_value();
+  EXPECT_NEAR(t_mid, (field(field(middle, "playback"), "from").number_value() + field(field(middle, "playback"), "to").number_value()) / 2, 0.01);
+  for (int src : {1, 2}) {
+    const auto upto = std::count_if(times[src].begin(), times[src].end(), [&](double t) { return t <= t_mid; });
+    EXPECT_EQ(field(*vehicle(middle, src), "drawn").number_value(), upto) << src;
+    EXPECT_LT(upto, static_cast<long>(times[src].size())) << src;
   }
   browser.execute("document.getElementById('pb-live').click(); return true;");
   EXPECT_EQ(field(summary(browser), "mode").string_value(), "live");
@@ -348,7 +461,7 @@ TEST_F(GeovBrowser, BothVehiclesMoveLivePlayBackAndExportAsKml) {
   std::ofstream(fs::path(GEOV_OUTPUT_DIR) / "geov_map.png", std::ios::binary) << png;
 
   step("KML");
-  // 5. KML: the vehicles stop; once the topside and the map hold the same
+  // 6. KML: the vehicles stop; once the topside and the map hold the same
   // track, the NetworkLink's document and the history hold every position.
   stop_feeding();
   std::map<int, v1::TrackResponse> tracks;

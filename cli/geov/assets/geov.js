@@ -414,6 +414,7 @@
     $('pb-from').onchange = kmlHistoryLink;
     $('pb-to').onchange = kmlHistoryLink;
     $('pb-recent').onclick = recentPeriod;
+    $('section-img').onclick = () => { if (state.section.url) window.open(state.section.url); };  // full size
     document.querySelector('#vehicles tbody').onclick = (e) => {
       const row = e.target.closest('tr[data-src]');
       if (row) selectVehicle(Number(row.dataset.src));
