@@ -28,10 +28,24 @@ plot::Rgb strategy_colour(const eval::DepthAdaptationResult& result, std::size_t
   return colour(fixed > 1 ? double(s) / double(fixed - 1) : 0.0);
 }
 
+int nodes_note_y(std::size_t legend_rows) { return kLegendTop + static_cast<int>(legend_rows) * kLegendRow + 16; }
+
+namespace {
+// The experiment's nodes, under the legend: where the source and the
+// receiver are (the picture's axes have no place for them).
+void draw_nodes_note(plot::Canvas& canvas, std::size_t legend_rows, double buoy_depth_m) {
+  const int y = nodes_note_y(legend_rows);
+  canvas.text(kLegendLeft, y, "source: the buoy, " + plot::tick_label(buoy_depth_m, 0.1) + " m", 12, plot::kBlack);
+  canvas.text(kLegendLeft, y + 18, "receiver: the vehicle, at", 12, plot::kBlack);
+  canvas.text(kLegendLeft, y + 34, "each strategy's depth", 12, plot::kBlack);
+}
+}  // namespace
+
 int legend_x() { return kLegendLeft + 15; }
 int legend_y(std::size_t s) { return kLegendTop + static_cast<int>(s) * kLegendRow; }
 
-plot::Canvas draw_depth_adaptation(const eval::DepthAdaptationResult& result, const std::string& input) {
+plot::Canvas draw_depth_adaptation(const eval::DepthAdaptationResult& result, const std::string& input,
+                                   double buoy_depth_m) {
   plot::Canvas canvas(kWidth, kHeight);
   const std::size_t bins = result.bin_edges_m.size() - 1;
   auto centre_km = [&](std::size_t b) { return (result.bin_edges_m[b] + result.bin_edges_m[b + 1]) / 2000; };
@@ -54,18 +68,19 @@ plot::Canvas draw_depth_adaptation(const eval::DepthAdaptationResult& result, co
     canvas.text(kLegendLeft + 38, ly, s == adaptive ? "adaptive" : "fixed at " + strategy.name, 13, plot::kBlack);
   }
   canvas.text(kLegendLeft, kLegendTop - 22, "Strategy", 14, plot::kBlack);
+  draw_nodes_note(canvas, result.strategies.size(), buoy_depth_m);
   plot::draw_title(canvas, "Depth adaptation: packets received against range, " +
                                std::filesystem::path(input).filename().string());
   return canvas;
 }
 
 void write_depth_adaptation_png(const std::string& path, const eval::DepthAdaptationResult& result,
-                                const std::string& input) {
-  draw_depth_adaptation(result, input).write_png(path);
+                                const std::string& input, double buoy_depth_m) {
+  draw_depth_adaptation(result, input, buoy_depth_m).write_png(path);
 }
 
 plot::Canvas draw_depth_adaptation_sweep(eval::SweepQuantity quantity, const std::vector<eval::SweepPoint>& points,
-                                         const std::string& input) {
+                                         const std::string& input, double buoy_depth_m) {
   plot::Canvas canvas(kWidth, kHeight);
   const double lo = points.empty() ? 0 : points.front().value, hi = points.empty() ? 1 : points.back().value;
   const double pad = hi > lo ? 0 : 1;  // one value: a unit either side
@@ -96,14 +111,16 @@ plot::Canvas draw_depth_adaptation_sweep(eval::SweepQuantity quantity, const std
   canvas.line(kLegendLeft, legend_y(1), kLegendLeft + 30, legend_y(1), red, 2);
   canvas.text(kLegendLeft + 38, legend_y(1), "best fixed depth", 13, plot::kBlack);
   canvas.text(kLegendLeft, legend_y(2) + 6, "bars: +-1 standard error", 12, plot::kBlack);
+  draw_nodes_note(canvas, 4, buoy_depth_m);
   plot::draw_title(canvas, std::string("Depth adaptation across ") + (noise ? "the noise level" : "the excess loss") +
                                ", " + std::filesystem::path(input).filename().string());
   return canvas;
 }
 
 void write_depth_adaptation_sweep_png(const std::string& path, eval::SweepQuantity quantity,
-                                      const std::vector<eval::SweepPoint>& points, const std::string& input) {
-  draw_depth_adaptation_sweep(quantity, points, input).write_png(path);
+                                      const std::vector<eval::SweepPoint>& points, const std::string& input,
+                                      double buoy_depth_m) {
+  draw_depth_adaptation_sweep(quantity, points, input, buoy_depth_m).write_png(path);
 }
 
 }  // namespace acomms::cli

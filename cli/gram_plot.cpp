@@ -161,7 +161,8 @@ void write_tl_png(const std::string& path, const gram::TransmissionLoss& tl, con
   draw_tl(tl, env, input, marks).write_png(path);
 }
 
-plot::Canvas draw_objective(const gram::DepthObjectiveReply& reply, const std::string& title) {
+plot::Canvas draw_objective(const gram::DepthObjectiveReply& reply, const std::string& title,
+                            std::optional<double> source_depth_m) {
   constexpr int kW = 700, kH = 520;
   const auto& points = reply.points();
   if (points.empty()) throw std::runtime_error("no depths to plot");
@@ -179,6 +180,11 @@ plot::Canvas draw_objective(const gram::DepthObjectiveReply& reply, const std::s
     canvas.line(f.x_of(a.objective_filtered()), f.y_of(a.depth_m()), f.x_of(b.objective_filtered()), f.y_of(b.depth_m()),
                 plot::kBlack, 2);
   }
+  const bool source_shown = source_depth_m && *source_depth_m >= z_top && *source_depth_m <= z_bottom;
+  if (source_shown) {
+    const int y = f.y_of(*source_depth_m);
+    for (int x = f.left; x <= f.right; x += 12) canvas.line(x, y, std::min(x + 7, f.right), y, kObjectiveSource, 2);
+  }
   canvas.line(f.left, f.y_of(reply.best_depth_m()), f.right, f.y_of(reply.best_depth_m()), kObjectiveBest, 3);
   const int lx = 480, ly = 60;
   canvas.line(lx, ly, lx + 30, ly, kObjectiveRaw);
@@ -186,15 +192,22 @@ plot::Canvas draw_objective(const gram::DepthObjectiveReply& reply, const std::s
   canvas.line(lx, ly + 22, lx + 30, ly + 22, plot::kBlack, 2);
   canvas.text(lx + 38, ly + 22, "filtered", 13, plot::kBlack);
   canvas.line(lx, ly + 44, lx + 30, ly + 44, kObjectiveBest, 3);
-  canvas.text(lx + 38, ly + 44, "best depth " + plot::tick_label(reply.best_depth_m(), 0.1) + " m", 13, plot::kBlack);
+  canvas.text(lx + 38, ly + 44, "receiver's best depth " + plot::tick_label(reply.best_depth_m(), 0.1) + " m", 13,
+              plot::kBlack);
   canvas.fill(lx, ly + 61, lx + 30, ly + 71, kObjectiveBelow);
   canvas.text(lx + 38, ly + 66, "below the bottom", 13, plot::kBlack);
+  if (source_shown) {
+    for (int x = lx; x <= lx + 30; x += 12) canvas.line(x, ly + 88, std::min(x + 7, lx + 30), ly + 88, kObjectiveSource, 2);
+    canvas.text(lx + 38, ly + 88, "source (other node) " + plot::tick_label(*source_depth_m, 0.1) + " m", 13,
+                plot::kBlack);
+  }
   plot::draw_title(canvas, title);
   return canvas;
 }
 
-void write_objective_png(const std::string& path, const gram::DepthObjectiveReply& reply, const std::string& title) {
-  draw_objective(reply, title).write_png(path);
+void write_objective_png(const std::string& path, const gram::DepthObjectiveReply& reply, const std::string& title,
+                         std::optional<double> source_depth_m) {
+  draw_objective(reply, title, source_depth_m).write_png(path);
 }
 
 }  // namespace acomms::cli

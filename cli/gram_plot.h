@@ -49,12 +49,16 @@ int tl_colour_bar_x();
 int tl_colour_bar_y(double db, double best_db);
 
 // The depth objective, for `acommsctl gram depth --png`: depth down (m),
-// the objective across [0, 1]; raw in grey, filtered in black, the best
-// depth (where the receiver is sent) as a red line, depths below the
-// window's shallowest bottom shaded; a legend and a title (`title`: what
-// was asked).
-void write_objective_png(const std::string& path, const gram::DepthObjectiveReply& reply, const std::string& title);
-plot::Canvas draw_objective(const gram::DepthObjectiveReply& reply, const std::string& title);
-inline constexpr plot::Rgb kObjectiveRaw{150, 150, 150}, kObjectiveBest{200, 0, 0}, kObjectiveBelow{235, 235, 235};
+// the objective across [0, 1]; raw in grey, filtered in black, the
+// receiver's best depth (where it is sent) as a red line, the source (the
+// other node) at its depth as a dashed blue line when known, depths below
+// the window's shallowest bottom shaded; a legend and a title (`title`:
+// what was asked).
+void write_objective_png(const std::string& path, const gram::DepthObjectiveReply& reply, const std::string& title,
+                         std::optional<double> source_depth_m = std::nullopt);
+plot::Canvas draw_objective(const gram::DepthObjectiveReply& reply, const std::string& title,
+                            std::optional<double> source_depth_m = std::nullopt);
+inline constexpr plot::Rgb kObjectiveRaw{150, 150, 150}, kObjectiveBest{200, 0, 0}, kObjectiveBelow{235, 235, 235},
+    kObjectiveSource{31, 119, 180};
 
 }  // namespace acomms::cli

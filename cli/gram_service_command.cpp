@@ -99,7 +99,19 @@ void run_depth(const DepthOptions& o, const GlobalOptions& global) {
     char title[160];
     std::snprintf(title, sizeof title, "Depth objective for %s, %.0f m away, H_max %.1f dB", o.consumer.c_str(), o.range_m,
                   response.reply().h_max_db());
-    write_objective_png(o.png, response.reply(), title);
+    // The source: the other node, at the depth asked for, else the one the
+    // daemon's environment holds.
+    std::optional<double> source_depth;
+    if (!std::isnan(o.source_depth_m)) {
+      source_depth = o.source_depth_m;
+    } else {
+      grpc::ClientContext env_context;
+      set_deadline(env_context, global.timeout_s);
+      gram::KnownEnvironment held;
+      if (stub->GetEnvironment(&env_context, v1::GetEnvironmentRequest(), &held).ok() && held.base().source_depth_m() > 0)
+        source_depth = held.base().source_depth_m();
+    }
+    write_objective_png(o.png, response.reply(), title, source_depth);
   }
 }
 

@@ -102,7 +102,7 @@ void run(DepthAdaptationOptions& o, const GlobalOptions& global) {
     }
     const std::vector<eval::SweepPoint> points =
         eval::run_depth_adaptation_sweep(imported.environment, config, model ? &*model : nullptr, quantity, range);
-    if (!o.png.empty()) write_depth_adaptation_sweep_png(o.png, quantity, points, o.env);
+    if (!o.png.empty()) write_depth_adaptation_sweep_png(o.png, quantity, points, o.env, config.buoy_depth_m);
     std::cout << (global.json ? eval::format_sweep_json(quantity, points)
                               : eval::format_sweep_table(quantity, config, points))
               << std::flush;
@@ -110,7 +110,7 @@ void run(DepthAdaptationOptions& o, const GlobalOptions& global) {
   }
   const eval::DepthAdaptationResult result =
       eval::run_depth_adaptation(imported.environment, config, model ? &*model : nullptr);
-  if (!o.png.empty()) write_depth_adaptation_png(o.png, result, o.env);
+  if (!o.png.empty()) write_depth_adaptation_png(o.png, result, o.env, config.buoy_depth_m);
   std::cout << (global.json ? eval::format_depth_adaptation_json(config, result)
                             : eval::format_depth_adaptation_table(config, result))
             << std::flush;

@@ -2,11 +2,12 @@
 // The map's HTTP server: a small HTTP/1.1 server on POSIX sockets, one
 // thread per connection, one request per connection.
 //
-// Why not cpp-httplib: Debian 12's libcpp-httplib-dev ships the library
-// compiled as a shared object only (libcpp-httplib.so, with a declarations-
-// only httplib.h and no static archive), and acommsctl links every third-
-// party library statically (tests/integration/check_static_linking.sh). The
-// map needs little of HTTP: GET of built-in assets and JSON, and long-lived
+// Why our own and not cpp-httplib (the README says so too, briefly):
+// Debian 12's libcpp-httplib-dev ships the library compiled as a shared
+// object only (libcpp-httplib.so, with a declarations-only httplib.h and
+// no static archive), and acommsctl links every third-party library
+// statically (tests/integration/check_static_linking.sh). The map needs
+// little of HTTP: GET of built-in assets, JSON and PNG, and long-lived
 // server-sent event streams, so the server is these two files.
 //
 // Bounds, so that whoever reaches the port cannot hurt the operator's

@@ -163,6 +163,31 @@ TEST(ObjectivePicture, TheBestDepthIsARedLineWithItsValueInTheLegend) {
   for (int yy = 4; yy <= 28; ++yy)
     for (int x = 0; x < c.width(); ++x) ink += !(c.at(x, yy) == plot::kWhite);
   EXPECT_GT(ink, 150) << "title";
+  // No source depth given: none drawn.
+  EXPECT_EQ(c.at(300, 40 + static_cast<int>(std::lround(15.0 / 100 * 420))), plot::kWhite);
+}
+
+TEST(ObjectivePicture, TheSourceIsADashedBlueLineAtItsDepthWithItsLegend) {
+  gram::DepthObjectiveReply reply;
+  reply.set_bottom_m(80);
+  reply.set_best_depth_m(40);
+  for (int z = 0; z <= 100; z += 5) {
+    auto* p = reply.add_points();
+    p->set_depth_m(z);
+    p->set_objective(0.9);
+    p->set_objective_filtered(0.95);
+  }
+  const plot::Canvas c = draw_objective(reply, "Depth objective for test", 15.0);
+  const int y = 40 + static_cast<int>(std::lround(15.0 / 100 * 420));
+  int dashes = 0, gaps = 0;
+  for (int x = 81; x < 460; ++x) (c.at(x, y) == kObjectiveSource ? dashes : gaps) += 1;
+  EXPECT_GT(dashes, 150);
+  EXPECT_GT(gaps, 60);  // dashed, not solid
+  EXPECT_EQ(c.at(482, 148), kObjectiveSource) << "the legend's sample";
+  int ink = 0;
+  for (int yy = 140; yy <= 156; ++yy)
+    for (int x = 518; x <= 690; ++x) ink += !(c.at(x, yy) == plot::kWhite);
+  EXPECT_GT(ink, 100) << "the legend's source";
 }
 
 }  // namespace
