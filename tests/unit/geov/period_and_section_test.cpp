@@ -67,8 +67,8 @@ TEST_F(PeriodAndSectionTest, APeriodIsCutToThePositionsHeldAndAllOfThemWithoutOn
 TEST_F(PeriodAndSectionTest, APeriodOutsideThePositionsHeldIsRefusedNamingBoth) {
   fleet_.add_positions({at(1, 1000, 0, 0), at(1, 1020, 2, 0)});
   start();
-  for (const std::string& query : {"from=2000&to=3000", "from=10&to=999", "to=999"}) {
-    const std::string r = get(port(), "/api/history?" + query);
+  for (const char* query : {"from=2000&to=3000", "from=10&to=999", "to=999"}) {
+    const std::string r = get(port(), std::string("/api/history?") + query);
     EXPECT_EQ(status_of(r), 400) << query;
     EXPECT_NE(body_of(r).find("holds no positions: those held run from 1970-01-01T00:16:40Z to 1970-01-01T00:17:00Z"),
               std::string::npos)
@@ -83,7 +83,9 @@ TEST_F(PeriodAndSectionTest, APeriodOutsideThePositionsHeldIsRefusedNamingBoth) 
 
 TEST_F(PeriodAndSectionTest, APeriodHoldingMoreThanTheBoundIsRefusedNamingIt) {
   fleet_.add_positions({at(1, 0 + 1e6, 0, 0), at(1, 7200 + 1e6, 1, 0), at(1, 14400 + 1e6, 2, 0)});
-  start({.max_period_s = 3 * 3600});
+  SiteOptions options;
+  options.max_period_s = 3 * 3600;
+  start(options);
   std::string r = get(port(), "/api/history");
   EXPECT_EQ(status_of(r), 400);
   EXPECT_NE(body_of(r).find("the period holds 4 h of positions; at most 3 h at once (--max-period)"), std::string::npos)
