@@ -2,7 +2,7 @@
 // The map's HTTP server: a small HTTP/1.1 server on POSIX sockets, one
 // thread per connection, one request per connection.
 //
-// Why our own and not cpp-httplib (the README says so too, briefly):
+// Why our own and not cpp-httplib:
 // Debian 12's libcpp-httplib-dev ships the library compiled as a shared
 // object only (libcpp-httplib.so, with a declarations-only httplib.h and
 // no static archive), and acommsctl links every third-party library
