@@ -68,6 +68,8 @@ class Planner {
     if (own < f_.steer[0][j] - o_.ridge_tolerance || shadow(0, z0_)) return std::nullopt;
     std::vector<std::size_t> track{j};
     for (std::size_t k = 1; k < f_.time_s.size(); ++k) {
+      // A ridge is worth staying on while it stays high: within the
+      // tolerance of the best the vehicle could reach by then.
       const double reach = o_.vertical_speed_mps * (f_.time_s[k] - f_.time_s[k - 1]) + kReachSlack_m;
       const double from = k == 1 ? z0_ : f_.depth_m[track.back()];
       std::optional<std::size_t> next;
@@ -75,10 +77,19 @@ class Planner {
         const double d = std::abs(f_.depth_m[p] - from);
         if (d <= reach && (!next || d < std::abs(f_.depth_m[*next] - from))) next = p;
       }
-      if (!next) return std::nullopt;
+      if (!next || f_.steer[k][*next] < best_reachable(k) - o_.ridge_tolerance) return std::nullopt;
       track.push_back(*next);
     }
     return track;
+  }
+
+  // The largest steering objective of column k within reach of z0 by t_k.
+  double best_reachable(std::size_t k) const {
+    const double reach = o_.vertical_speed_mps * f_.time_s[k] + kReachSlack_m;
+    double best = 0;
+    for (std::size_t j = 0; j < f_.depth_m.size(); ++j)
+      if (f_.allowed[k][j] && std::abs(f_.depth_m[j] - z0_) <= reach) best = std::max(best, f_.steer[k][j]);
+    return best;
   }
 
   // True when the straight path from (0, z0) to (t_k, z) enters a shadow

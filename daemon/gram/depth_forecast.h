@@ -14,7 +14,9 @@
 //      when its own objective is within
 //      `ridge_tolerance` of the peak's value) and that
 //      ridge can be followed, within the vertical speed, across every column
-//      to the horizon without falling into shadow, it stays on the ridge;
+//      to the horizon, staying high (in each column within `ridge_tolerance`
+//      of the best the vehicle could reach by then: "a ridge of high
+//      objective", not any bump that fades), it stays on the ridge;
 //   2. otherwise it targets the optimum within the horizon that it can
 //      reach: among points (column k ≥ 1, depth z) with |z − z₀| ≤ w t_k
 //      whose straight path from (0, z₀) does not cross a shadow zone, the
@@ -54,7 +56,9 @@ struct ForecastField {
 struct ForecastOptions {
   double vertical_speed_mps = 0.75;  // w, > 0
   double ridge_tolerance = 0.05;     // [0, 1]
-  double optimum_tolerance = 0.02;   // [0, 1]
+  // [0, 1]: 0, the strict optimum (least pitch decides exact ties only);
+  // on the deep Munk replay a tolerance of 0.02 or 0.1 received less.
+  double optimum_tolerance = 0.0;
   double shadow_objective = 0.0;     // raw objective at or below: shadow, [0, 1)
 };
 
@@ -84,7 +88,7 @@ ForecastDecision forecast_depth(const ForecastField& field, double current_depth
 // What a depth-objective query adds to ask for a forecast
 // (depth_forecast_field.h builds the field from the model's TL).
 struct DepthForecastRequest {
-  double forecast_horizon_s = 1800;  // ≥ the query's horizon_s (τ_a): one column every τ_a
+  double forecast_horizon_s = 3600;  // ≥ the query's horizon_s (τ_a): one column every τ_a
   double current_depth_m = 0;        // ≥ 0
   // How well a caustic's depth is known, m (the thesis: about 50); the
   // steering objective is low-passed from the surface with cutoff 1/this

@@ -42,21 +42,35 @@ double bump(double z, double centre, double height, double width = 60) {
 // w = 0.75 m/s: 90 m per 120 s column.
 const ForecastOptions kOptions{};
 
-TEST(GramDepthForecast, ItStaysOnTheRidgeItIsOnEvenWithABetterPeakElsewhere) {
+TEST(GramDepthForecast, ItStaysOnTheRidgeItIsOnEvenWithABetterPeakOutOfReach) {
   // A ridge at 500 m sinking 40 m a column (within reach), value 0.6; a
-  // peak of 0.9 at 100 m that it could reach (400 m in 10 columns).
-  const ForecastField f = field(11, [](std::size_t k, double z) {
+  // peak of 0.9 at 100 m, 400 m away: out of reach in 4 columns (270 m).
+  const ForecastField f = field(4, [](std::size_t k, double z) {
     return std::max(bump(z, 500 + 40.0 * k, 0.6), bump(z, 100, 0.9));
   });
   const ForecastDecision d = forecast_depth(f, 500, kOptions);
   ASSERT_EQ(d.choice, ForecastChoice::kRidge);
-  ASSERT_EQ(d.ridge_depth_m.size(), 11u);
+  ASSERT_EQ(d.ridge_depth_m.size(), 4u);
   EXPECT_EQ(d.ridge_depth_m[0], 500);
   EXPECT_EQ(d.target_depth_m, 550);  // the ridge's grid peak at 540 m in column 1
-  EXPECT_EQ(d.ridge_depth_m[10], 900);
+  EXPECT_EQ(d.ridge_depth_m[3], 600);
   EXPECT_DOUBLE_EQ(d.target_time_s, 120);
   EXPECT_NEAR(d.depth_after(500, 60), 525, 1e-9);
-  EXPECT_NEAR(d.depth_after(500, 1200), 900, 1e-9);
+  EXPECT_NEAR(d.depth_after(500, 360), 600, 1e-9);
+  // Over 11 columns the same ridge is followed to 900 m while nothing
+  // better is in reach, but the 0.9 peak comes in reach by column 5: a ridge
+  // that is no longer high is left for it.
+  const ForecastField g = field(11, [](std::size_t k, double z) {
+    return std::max(bump(z, 500 + 40.0 * k, 0.6), bump(z, 100, 0.9));
+  });
+  const ForecastDecision e = forecast_depth(g, 500, kOptions);
+  EXPECT_EQ(e.choice, ForecastChoice::kOptimum);
+  EXPECT_EQ(e.target_depth_m, 100);
+  const ForecastField alone = field(11, [](std::size_t k, double z) { return bump(z, 500 + 40.0 * k, 0.6); });
+  const ForecastDecision a = forecast_depth(alone, 500, kOptions);
+  ASSERT_EQ(a.choice, ForecastChoice::kRidge);
+  EXPECT_EQ(a.ridge_depth_m[10], 900);
+  EXPECT_NEAR(a.depth_after(500, 1200), 900, 1e-9);
 }
 
 TEST(GramDepthForecast, ARidgeThatEndsWithinTheHorizonIsLeftForTheReachableOptimum) {
