@@ -52,11 +52,10 @@ plot::Canvas draw_depth_adaptation(const eval::DepthAdaptationResult& result, co
   const plot::Frame frame{kLeft, kTop, kRight, kBottom, result.bin_edges_m.front() / 1000,
                           result.bin_edges_m.back() / 1000, 1.0, 0.0};
   plot::draw_axes(canvas, frame, "Range (km)", "Packets received (fraction)", true);
-  const std::size_t adaptive = result.strategies.size() - 1;
   for (std::size_t s = 0; s < result.strategies.size(); ++s) {
     const eval::StrategyResult& strategy = result.strategies[s];
     const plot::Rgb c = strategy_colour(result, s);
-    const int thickness = s == adaptive ? 3 : 2;
+    const int thickness = strategy.fixed_depth_m ? 2 : 3;  // adaptive and forecast stand out
     for (std::size_t b = 0; b < bins; ++b) {
       const int x = frame.x_of(centre_km(b)), y = frame.y_of(strategy.receipt(b));
       canvas.fill(x - 2, y - 2, x + 2, y + 2, c);
@@ -65,7 +64,8 @@ plot::Canvas draw_depth_adaptation(const eval::DepthAdaptationResult& result, co
     // The legend: a sample of the line and the strategy's name.
     const int ly = legend_y(s);
     canvas.line(kLegendLeft, ly, kLegendLeft + 30, ly, c, thickness);
-    canvas.text(kLegendLeft + 38, ly, s == adaptive ? "adaptive" : "fixed at " + strategy.name, 13, plot::kBlack);
+    canvas.text(kLegendLeft + 38, ly, strategy.fixed_depth_m ? "fixed at " + strategy.name : strategy.name, 13,
+                plot::kBlack);
   }
   canvas.text(kLegendLeft, kLegendTop - 22, "Strategy", 14, plot::kBlack);
   draw_nodes_note(canvas, result.strategies.size(), buoy_depth_m);

@@ -29,6 +29,9 @@ struct DepthOptions {
   double source_depth_m = NAN;
   std::string consumer = "acommsctl", png;
   double deadline_s = 60;
+  double noise_decrease_db_per_km = NAN;
+  // The forecast strategy (deep water): asked for when a horizon is given.
+  double forecast_horizon_s = NAN, current_depth_m = 0, vertical_speed_mps = 0.75, caustic_uncertainty_m = 50;
 };
 
 struct EnvOptions {
@@ -60,6 +63,13 @@ void print_objective(const v1::DepthObjectiveResponse& response) {
               response.instances(), r.h_max_db(), r.bottom_m());
   std::printf("# best depth %.2f m (objective %.4f)%s\n", r.best_depth_m(), r.best_objective(),
               r.any_signal() ? "" : " — no allowed depth is predicted to receive");
+  if (r.has_forecast()) {
+    const auto& f = r.forecast();
+    std::printf("# forecast over %.0f s (%d windows): %s, target %.2f m in %.0f s (objective %.4f, %.3f m/s); "
+                "at the next window be at %.2f m\n",
+                f.forecast_horizon_s(), f.columns_size(), f.choice().c_str(), f.target_depth_m(), f.target_time_s(),
+                f.target_objective(), f.vertical_rate_mps(), f.next_depth_m());
+  }
 }
 
 void run_depth(const DepthOptions& o, const GlobalOptions& global) {
@@ -87,6 +97,16 @@ void run_depth(const DepthOptions& o, const GlobalOptions& global) {
     s->set_noise_level_db(o.noise_level_db);
     s->set_array_gain_db(o.array_gain_db);
     s->set_threshold_db(o.threshold_db);
+    if (!std::isnan(o.noise_decrease_db_per_km)) s->set_noise_decrease_db_per_km(o.noise_decrease_db_per_km);
+  } else if (!std::isnan(o.noise_decrease_db_per_km)) {
+    throw UsageError("--noise-decrease needs the sonar equation: give --source-level and --noise-level");
+  }
+  if (!std::isnan(o.forecast_horizon_s)) {
+    auto* f = q->mutable_forecast();
+    f->set_forecast_horizon_s(o.forecast_horizon_s);
+    f->set_current_depth_m(o.current_depth_m);
+    f->set_vertical_speed_mps(o.vertical_speed_mps);
+    f->set_caustic_uncertainty_m(o.caustic_uncertainty_m);
   }
   auto stub = gram_stub(global);
   grpc::ClientContext context;
@@ -190,7 +210,22 @@ void add_gram_service_commands(CLI::App& gram, const GlobalOptions& options) {
       ->capture_default_str();
   depth->add_option("--deadline", d.deadline_s, "Seconds the model may take")->capture_default_str();
   depth->add_option("--png", d.png, "Also plot the objective against depth to this PNG")->type_name("FILE");
-  depth->footer("Example:\n  acommsctl gram depth --range 3000 --speed 1.5 --max-depth 90 --min-altitude 5 --lowpass 0.02");
+  depth->add_option("--noise-decrease", d.noise_decrease_db_per_km,
+                    "Sonar equation, deep water: NL falls by this many dB/km below the profile's critical depth "
+                    "(spec 6.6 after Schneider 2013 4.4; 3 is typical)");
+  depth->add_option("--forecast-horizon", d.forecast_horizon_s,
+                    "Also run the forecast strategy (deep water): plan over this many seconds ahead, one window "
+                    "every --horizon");
+  depth->add_option("--current-depth", d.current_depth_m, "Forecast: the vehicle's depth now (m)")->capture_default_str();
+  depth->add_option("--vertical-speed", d.vertical_speed_mps, "Forecast: the vehicle's most vertical speed (m/s)")
+      ->capture_default_str();
+  depth->add_option("--caustic-uncertainty", d.caustic_uncertainty_m,
+                    "Forecast: how well a caustic's depth is known (m); the objective is low-passed from the "
+                    "surface with cutoff 1/this (0: --lowpass)")
+      ->capture_default_str();
+  depth->footer(
+      "Examples:\n  acommsctl gram depth --range 3000 --speed 1.5 --max-depth 90 --min-altitude 5 --lowpass 0.02\n"
+      "  acommsctl gram depth --range 30000 --speed 1.5 --max-depth 4900 --forecast-horizon 3600 --current-depth 20");
   depth->callback([&options] { run_depth(depth_options, options); });
 
   CLI::App* env = gram.add_subcommand("env", "The environment the daemon holds: show it, or feed it CTD casts");

@@ -46,7 +46,10 @@ std::string in_flag_words(std::string message) {
       {"limits.max_depth_m", "--max-depth"}, {"limits.min_altitude_m", "--min-altitude"},
       {"min_depth_m", "--min-depth"},       {"max_depth_m", "--max-depth"},
       {"min_altitude_m", "--min-altitude"}, {"excess_loss_db", "--excess-loss"},
-      {"own_ship_noise_db", "--own-ship-noise"}};
+      {"own_ship_noise_db", "--own-ship-noise"},
+      {"noise_decrease_db_per_km", "--noise-decrease"},
+      {"forecast_horizon_s", "--forecast-horizon"},
+      {"caustic_uncertainty_m", "--caustic-uncertainty"}};
   for (const auto& [field, flag] : kFlags) {
     const std::string name = field;
     if (message.rfind(name + " ", 0) == 0) return flag + message.substr(name.size());
@@ -193,9 +196,24 @@ void add_sim_depth_adaptation_command(CLI::App* sim, const GlobalOptions& global
                       "Run across a range instead: noise|excess-loss FROM:TO:STEP (dB); prints adaptive against the "
                       "best fixed depth, each with its standard error, per value")
       ->expected(2);
+  command->add_option("--noise-decrease", c.noise_decrease_db_per_km,
+                      "Deep water: NL falls by this many dB/km below the profile's critical depth (spec 6.6 after "
+                      "Schneider 2013 4.4; 3 is typical); the adaptive vehicles then rank depths by signal excess");
+  command->add_flag("--forecast", c.forecast,
+                    "Also run the forecast strategy (deep water, Schneider 2013 4.4): plan over --forecast-horizon, "
+                    "stay on a ridge, else the reachable optimum of least pitch without crossing a shadow zone");
+  command->add_option("--forecast-horizon", c.forecast_horizon_s, "How far ahead the forecast looks, s")
+      ->capture_default_str();
+  command->add_option("--caustic-uncertainty", c.caustic_uncertainty_m,
+                      "How well a caustic's depth is known, m: the forecast's objective is low-passed from the "
+                      "surface with cutoff 1/this (0: none)")
+      ->capture_default_str();
   command->footer(
       "Examples:\n"
       "  acommsctl sim depth-adaptation --env examples/glint10.env --png receipt.png\n"
+      "  acommsctl sim depth-adaptation --env deep_munk.env --buoy-depth 200 --start-range 20000 --max-range 60000 \\\n"
+      "      --start-depth 20 --depths 100,500,1000,2000,3000,4000 --tau-a 120 --forecast --forecast-horizon 3600 \\\n"
+      "      --noise-decrease 3\n"
       "  acommsctl sim depth-adaptation --env examples/glint10.env --sweep noise 100:112:2 --laps 10\n"
       "  acommsctl --json sim depth-adaptation --env examples/glint10.env --depths 10,50,90 --laps 5");
   command->callback([&global] {

@@ -330,9 +330,9 @@ _acommsctl() {
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --env|--model-env|--buoy-depth|--start-range|--max-range|--speed|--interval|--rate|--depths|--start-depth|--vertical-speed|--tau-a|--h-max|--min-depth|--max-depth|--min-altitude|--bin|--range-step|--depth-step|--laps|--seed|--threads|--source-level|--noise-level|--sea-state|--band|--shipping|--snr50|--slope|--excess-loss|--own-ship-noise|--sweep|--timeout) COMPREPLY=(); return ;;
+        --env|--model-env|--buoy-depth|--start-range|--max-range|--speed|--interval|--rate|--depths|--start-depth|--vertical-speed|--tau-a|--h-max|--min-depth|--max-depth|--min-altitude|--bin|--range-step|--depth-step|--laps|--seed|--threads|--source-level|--noise-level|--sea-state|--band|--shipping|--snr50|--slope|--excess-loss|--own-ship-noise|--sweep|--noise-decrease|--forecast-horizon|--caustic-uncertainty|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --env --model-env --png --buoy-depth --start-range --max-range --speed --interval --rate --depths --start-depth --vertical-speed --tau-a --h-max --min-depth --max-depth --min-altitude --bin --range-step --depth-step --laps --seed --threads --source-level --noise-level --sea-state --band --shipping --snr50 --slope --excess-loss --own-ship-noise --sweep --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --env --model-env --png --buoy-depth --start-range --max-range --speed --interval --rate --depths --start-depth --vertical-speed --tau-a --h-max --min-depth --max-depth --min-altitude --bin --range-step --depth-step --laps --seed --threads --source-level --noise-level --sea-state --band --shipping --snr50 --slope --excess-loss --own-ship-noise --sweep --noise-decrease --forecast --forecast-horizon --caustic-uncertainty --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "gram")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -377,9 +377,9 @@ _acommsctl() {
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --range|--speed|--heading|--horizon|--h-max|--min-depth|--max-depth|--min-altitude|--lowpass|--source-level|--noise-level|--array-gain|--threshold|--source-depth|--consumer|--deadline|--timeout) COMPREPLY=(); return ;;
+        --range|--speed|--heading|--horizon|--h-max|--min-depth|--max-depth|--min-altitude|--lowpass|--source-level|--noise-level|--array-gain|--threshold|--source-depth|--consumer|--deadline|--noise-decrease|--forecast-horizon|--current-depth|--vertical-speed|--caustic-uncertainty|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --range --speed --heading --horizon --h-max --h-max-window --min-depth --max-depth --min-altitude --lowpass --zero-phase --source-level --noise-level --array-gain --threshold --source-depth --consumer --deadline --png --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --range --speed --heading --horizon --h-max --h-max-window --min-depth --max-depth --min-altitude --lowpass --zero-phase --source-level --noise-level --array-gain --threshold --source-depth --consumer --deadline --png --noise-decrease --forecast-horizon --current-depth --vertical-speed --caustic-uncertainty --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "gram env")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;

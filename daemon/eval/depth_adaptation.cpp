@@ -7,7 +7,9 @@
 #include <random>
 #include <stdexcept>
 
+#include "eval/depth_adaptation_vehicles.h"
 #include "gram/depth_objective.h"
+#include "gram/noise_depth_profile.h"
 #include "gram/tl_lookup.h"
 #include "gram/transmission_loss.h"
 #include "gram/validation_text.h"
@@ -31,6 +33,11 @@ double bottom_of(const gram::Environment& env) { return env.sound_speed(env.soun
 
 double depth_step(const gram::Environment& env, const DepthAdaptationConfig& c) {
   return c.depth_step_m > 0 ? c.depth_step_m : gram::default_depth_step_m(bottom_of(env) - surface_of(env));
+}
+
+// How far ahead of the vehicle the model grid must reach, in time.
+double looked_ahead_s(const DepthAdaptationConfig& c) {
+  return c.forecast ? std::max(c.horizon_s, c.forecast_horizon_s) : c.horizon_s;
 }
 
 // What a replay may change without a new model run (depth_adaptation.h).
@@ -62,6 +69,13 @@ void validate(const gram::Environment& env, const DepthAdaptationConfig& c) {
   check(require_greater("send_interval_s", c.send_interval_s, 0));
   check(require_greater("vertical_speed_mps", c.vertical_speed_mps, 0));
   check(require_greater("horizon_s", c.horizon_s, 0));
+  if (c.noise_decrease_db_per_km) check(require_at_least("noise_decrease_db_per_km", *c.noise_decrease_db_per_km, 0));
+  if (c.forecast) {
+    check(require_at_least("forecast_horizon_s", c.forecast_horizon_s, c.horizon_s));
+    if (c.forecast_horizon_s / c.horizon_s > 1000)
+      throw std::invalid_argument("forecast_horizon_s must be at most 1000 times horizon_s");
+    check(require_at_least("caustic_uncertainty_m", c.caustic_uncertainty_m, 0));
+  }
   check(require_greater("h_max_db", c.h_max_db, 0));
   check(require_greater("bin_m", c.bin_m, 0));
   check(require_greater("range_step_m", c.range_step_m, 0));
@@ -70,7 +84,7 @@ void validate(const gram::Environment& env, const DepthAdaptationConfig& c) {
   if (c.laps < 1 || c.laps > 100000) throw std::invalid_argument("laps must be in 1..100000");
   const double duration = 2 * (c.max_range_m - c.start_range_m) / c.speed_mps;
   if (duration / c.send_interval_s > 1e6) throw std::invalid_argument("more than 1e6 packets per lap: raise send_interval_s");
-  if ((c.max_range_m + c.speed_mps * c.horizon_s) / c.range_step_m > 20000)
+  if ((c.max_range_m + c.speed_mps * looked_ahead_s(c)) / c.range_step_m > 20000)
     throw std::invalid_argument("range_step_m is too fine: more than 20000 model ranges");
   if ((bottom - top) / depth_step(env, c) > 2000)
     throw std::invalid_argument("depth_step_m is too fine: more than 2000 model depths");
@@ -87,66 +101,13 @@ gram::Environment model_environment(gram::Environment env, const DepthAdaptation
   const auto nz = static_cast<std::size_t>(std::ceil((bottom - top) / dz - 1e-9));
   for (std::size_t i = 0; i <= nz; ++i) env.add_receiver_depth_m(std::min(bottom, top + i * dz));
   // Out to the farthest range window the vehicle will ask about.
-  const double r_end = c.max_range_m + c.speed_mps * c.horizon_s + c.range_step_m;
+  const double r_end = c.max_range_m + c.speed_mps * looked_ahead_s(c) + c.range_step_m;
   const auto nr = static_cast<std::size_t>(std::ceil(r_end / c.range_step_m));
   for (std::size_t i = 0; i <= nr; ++i) env.add_receiver_range_m(i * c.range_step_m);
   // Rays that leave the file's box stop; the box must hold the new grid.
   env.set_box_range_m(std::max(env.box_range_m(), (nr + 1) * c.range_step_m));
   env.set_box_depth_m(std::max(env.box_depth_m(), bottom + 1));
   return env;
-}
-
-// The vehicle's run: out from start_range_m to max_range_m, then back.
-struct Run {
-  double r0, r1, v;
-  double t_turn() const { return (r1 - r0) / v; }
-  double t_end() const { return 2 * t_turn(); }
-  double range(double t) const { return t <= t_turn() ? r0 + v * t : r1 - v * (t - t_turn()); }
-  double heading_deg(double t) const { return t < t_turn() ? 0.0 : 180.0; }
-};
-
-// Depth after moving from `from` toward `target` for `dt` at `w` m/s at most.
-double move_toward(double from, double target, double w, double dt) {
-  const double step = w * dt;
-  return from + std::clamp(target - from, -step, step);
-}
-
-struct Packet {
-  double time_s, range_m;
-  std::size_t bin;
-};
-
-std::vector<double> adaptive_depths(const gram::TransmissionLoss& tl, const gram::Environment& env,
-                                    const DepthAdaptationConfig& c, const Run& run,
-                                    const std::vector<Packet>& packets, std::vector<AdaptiveSample>& path) {
-  gram::DepthObjectiveRequest request;
-  request.speed_mps = c.speed_mps;
-  request.horizon_s = c.horizon_s;
-  request.h_max_db = c.h_max_db;
-  request.limits = c.limits;
-  if (request.limits.max_depth_m <= 0) request.limits.max_depth_m = bottom_of(env);
-  const std::span<const gram::TransmissionLoss> instances(&tl, 1);
-
-  double decided_at = 0, depth_then = c.start_depth_m, target = c.start_depth_m;
-  double next_decision = 0;
-  auto depth_at = [&](double t) { return move_toward(depth_then, target, c.vertical_speed_mps, t - decided_at); };
-  std::vector<double> depths;
-  for (const Packet& p : packets) {
-    // A decision due at the packet's time comes first (it moves nothing yet).
-    while (next_decision <= p.time_s) {
-      depth_then = depth_at(next_decision);
-      decided_at = next_decision;
-      request.range_m = run.range(next_decision);
-      request.heading_deg = run.heading_deg(next_decision);
-      const gram::DepthObjectiveResult answer = gram::compute_depth_objective(instances, env, request);
-      // No depth predicted to receive: keep the plan rather than dive on a 0.
-      if (answer.best.any_signal) target = answer.best.depth_m;
-      next_decision += c.horizon_s;
-    }
-    depths.push_back(depth_at(p.time_s));
-    path.push_back({p.time_s, p.range_m, depths.back(), target});
-  }
-  return depths;
 }
 
 }  // namespace
@@ -206,10 +167,25 @@ DepthAdaptationResult replay_depth_adaptation(const DepthAdaptationModel& model,
     std::snprintf(name, sizeof name, "%g m", z);
     out.strategies.push_back({name, z, {}, {}, {}});
   }
-  depth_of.push_back(believed ? adaptive_depths(*believed_tl, *believed, c, run, packets, out.adaptive_path)
-                              : adaptive_depths(tl, env, c, run, packets, out.adaptive_path));
+  // The vehicles decide on their own model when they have one.
+  const gram::TransmissionLoss& decide_tl = believed ? *believed_tl : tl;
+  const gram::Environment& decide_env = believed ? *believed : env;
+  if (c.forecast) {
+    depth_of.push_back(forecast_depths(decide_tl, decide_env, c, run, packets, out.forecast_path));
+    out.strategies.push_back({"forecast", std::nullopt, {}, {}, {}});
+  }
+  depth_of.push_back(next_window_depths(decide_tl, decide_env, c, run, packets, out.adaptive_path));
   out.separate_model = believed.has_value();
   out.strategies.push_back({"adaptive", std::nullopt, {}, {}, {}});
+
+  // NL at each depth (the water's profile): constant unless it falls.
+  if (c.noise_decrease_db_per_km) out.critical_depth_m = gram::critical_depth(env);
+  auto noise_at = [&](double depth) {
+    return c.noise_decrease_db_per_km ? gram::noise_level_at_depth(physics.noise_level_db, depth, out.critical_depth_m,
+                                                                   *c.noise_decrease_db_per_km)
+                                      : physics.noise_level_db;
+  };
+  gram::LinkPhysics at_depth = c.physics;
 
   // One uniform number per packet and lap, shared by every strategy.
   std::mt19937_64 rng(c.seed);
@@ -225,7 +201,8 @@ DepthAdaptationResult replay_depth_adaptation(const DepthAdaptationModel& model,
     double depth_sum = 0;
     for (std::size_t k = 0; k < packets.size(); ++k) {
       const double tl_db = gram::tl_at(tl, packets[k].range_m, depth_of[s][k]);
-      p[k] = gram::link_outcome(c.physics, tl_db, c.rate).probability;
+      at_depth.noise_level_db = noise_at(depth_of[s][k]);
+      p[k] = gram::link_outcome(at_depth, tl_db, c.rate).probability;
       depth_sum += depth_of[s][k];
       result.expected[packets[k].bin] += p[k];
       result.expected_overall += p[k];
@@ -250,8 +227,9 @@ DepthAdaptationResult replay_depth_adaptation(const DepthAdaptationModel& model,
   const StrategyResult& adaptive = out.strategies.back();
   out.adaptive_beats_every_fixed = true;
   out.adaptive_expected_beats_every_fixed = true;
-  for (std::size_t s = 0; s + 1 < out.strategies.size(); ++s) {
+  for (std::size_t s = 0; s < out.strategies.size(); ++s) {
     const StrategyResult& fixed = out.strategies[s];
+    if (!fixed.fixed_depth_m) continue;
     if (fixed.total_received > out.strategies[out.best_fixed].total_received) out.best_fixed = s;
     if (fixed.total_received >= adaptive.total_received) out.adaptive_beats_every_fixed = false;
     if (fixed.expected_overall >= adaptive.expected_overall - kExpectationTie) out.adaptive_expected_beats_every_fixed = false;

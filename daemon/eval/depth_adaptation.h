@@ -12,7 +12,9 @@
 // run with the source at the buoy (reciprocity: the loss from the vehicle to
 // the buoy equals the loss from the buoy to the vehicle), interpolated at
 // the vehicle's range and depth (gram/tl_lookup.h).
-// Strategies: each fixed depth, and "adaptive": every horizon_s (τ_a) the
+// Strategies: each fixed depth; "forecast" when asked (config.forecast: the
+// deep-water strategy of gram/depth_forecast.h, deciding on the same model
+// and cadence); and "adaptive" (the next window): every horizon_s (τ_a) the
 // vehicle asks the depth objective (gram/depth_objective.h, eq. 4.3 with
 // H_max) for the best depth over its range window (eq. 4.1 from its speed
 // and heading: Θ = 0 going out, 180° coming back) and moves toward it at
@@ -65,10 +67,22 @@ struct DepthAdaptationConfig {
   std::uint64_t seed = 1;
   gram::LinkPhysics physics;  // SL, NL and the reception curves
   unsigned threads = 0;       // model threads (0: all cores); same result
+  // Deep water: NL falls by this many dB/km below the profile's critical
+  // depth (gram/noise_depth_profile.h, spec §6.6) for every packet; the
+  // adaptive vehicles then rank depths by the sonar equation's signal
+  // excess (SE₀ = 0 dB) instead of eq. 4.3. Unset: NL the same at every depth.
+  std::optional<double> noise_decrease_db_per_km;
+  // The forecast strategy (gram/depth_forecast.h), run beside the others
+  // when set: every horizon_s it forecasts the objective up to
+  // forecast_horizon_s ahead and heads for the depth its plan puts it at
+  // by the next decision.
+  bool forecast = false;
+  double forecast_horizon_s = 3600;  // an hour: 2.7 km of depth at 0.75 m/s
+  double caustic_uncertainty_m = 50;  // 0: no low-pass of the steering objective
 };
 
 struct StrategyResult {
-  std::string name;  // "10 m", ..., "adaptive"
+  std::string name;  // "10 m", ..., "forecast", "adaptive"
   std::optional<double> fixed_depth_m;
   std::vector<std::uint32_t> sent, received;  // per range bin, over all laps
   std::vector<double> expected;               // per bin: mean modelled probability
@@ -86,7 +100,8 @@ struct AdaptiveSample {
 
 struct DepthAdaptationResult {
   std::vector<double> bin_edges_m;          // bins [e_i, e_{i+1})
-  std::vector<StrategyResult> strategies;   // fixed depths in order, adaptive last
+  std::vector<StrategyResult> strategies;   // fixed depths in order, forecast if asked, adaptive last
+  std::vector<AdaptiveSample> forecast_path;  // the forecast vehicle's, if asked
   std::vector<AdaptiveSample> adaptive_path;
   std::uint32_t beam_count = 0;
   double noise_level_db = 0;
@@ -96,6 +111,7 @@ struct DepthAdaptationResult {
   bool adaptive_beats_every_fixed = false;
   bool adaptive_expected_beats_every_fixed = false;
   std::size_t best_fixed = 0;  // index of the fixed depth receiving most (draws)
+  std::optional<double> critical_depth_m;  // with a noise decrease: where NL starts to fall
   bool separate_model = false;  // the vehicle decided on its own model
 };
 
@@ -122,7 +138,12 @@ DepthAdaptationModel model_depth_adaptation(const gram::Environment& env, const 
                                             const gram::Environment* vehicle_model = nullptr);
 DepthAdaptationResult replay_depth_adaptation(const DepthAdaptationModel& model, const gram::LinkPhysics& physics);
 
-// The per-bin table (one row per strategy) and the verdict, for people.
+// The standard error of a strategy's overall receipt p over its n packets:
+// sqrt(p (1 − p) / n) (the laps share nothing but the path).
+double receipt_se(const StrategyResult& strategy);
+
+// The per-bin table (one row per strategy, with the overall receipt's SE)
+// and the verdict, for people.
 std::string format_depth_adaptation_table(const DepthAdaptationConfig& config, const DepthAdaptationResult& result);
 std::string format_depth_adaptation_json(const DepthAdaptationConfig& config, const DepthAdaptationResult& result);
 

@@ -1,4 +1,5 @@
 // Text and JSON reports of the depth-adaptation experiment.
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -13,6 +14,15 @@ std::string fixed(double v, int digits) {
   return text;
 }
 
+}  // namespace
+
+double receipt_se(const StrategyResult& s) {
+  const double p = s.receipt_overall();
+  return s.total_sent ? std::sqrt(p * (1 - p) / s.total_sent) : 0.0;
+}
+
+namespace {
+
 std::string bin_label(const DepthAdaptationResult& r, std::size_t b) {
   return fixed(r.bin_edges_m[b], 0) + "-" + fixed(r.bin_edges_m[b + 1], 0);
 }
@@ -23,15 +33,28 @@ std::string verdict(const DepthAdaptationResult& r) {
   const StrategyResult& a = r.strategies.back();
   const StrategyResult& f = r.strategies[r.best_fixed];
   std::size_t e = 0;
-  for (std::size_t s = 0; s + 1 < r.strategies.size(); ++s)
-    if (r.strategies[s].expected_overall > r.strategies[e].expected_overall) e = s;
+  for (std::size_t s = 0; s < r.strategies.size(); ++s)
+    if (r.strategies[s].fixed_depth_m && r.strategies[s].expected_overall > r.strategies[e].expected_overall) e = s;
   std::string out = r.adaptive_beats_every_fixed ? "adaptation helps here" : "adaptation does NOT help here";
   out += ": adaptive receives " + fixed(a.receipt_overall(), 3) + " against " + fixed(f.receipt_overall(), 3) +
          " at the best fixed depth (" + f.name + "); expected " + fixed(a.expected_overall, 4) + " against " +
          fixed(r.strategies[e].expected_overall, 4) + " (" + r.strategies[e].name + ")";
   if (r.adaptive_beats_every_fixed != r.adaptive_expected_beats_every_fixed)
     out += "; the draws and the expectation disagree: the difference is within sampling noise (raise --laps)";
-  return out + "\n";
+  out += "\n";
+  for (const StrategyResult& s : r.strategies) {
+    if (s.name != "forecast") continue;
+    const double se = std::hypot(receipt_se(s), receipt_se(a));
+    out += "forecast receives " + fixed(s.receipt_overall(), 3) + " (SE " + fixed(receipt_se(s), 3) +
+           ") against the next window's " + fixed(a.receipt_overall(), 3) + " (SE " + fixed(receipt_se(a), 3) +
+           "): " + (se > 0 ? fixed((s.receipt_overall() - a.receipt_overall()) / se, 1) : std::string("0.0")) +
+           " SEs of the difference; against the best fixed depth " +
+           (std::hypot(receipt_se(s), receipt_se(f)) > 0
+                ? fixed((s.receipt_overall() - f.receipt_overall()) / std::hypot(receipt_se(s), receipt_se(f)), 1)
+                : std::string("0.0")) +
+           " SEs\n";
+  }
+  return out;
 }
 
 }  // namespace
@@ -43,8 +66,13 @@ std::string format_depth_adaptation_table(const DepthAdaptationConfig& c, const 
                     std::to_string(c.laps) + " laps (seed " + std::to_string(c.seed) + ")\n";
   out += "model: " + std::to_string(r.beam_count) + " beams, " + std::to_string(r.model_ranges) + " ranges x " +
          std::to_string(r.model_depths) + " depths; SL " + fixed(c.physics.source_level_db, 1) + " dB, NL " +
-         fixed(r.noise_level_db, 1) + " dB; adaptive: tau_a " + fixed(c.horizon_s, 0) + " s, H_max " +
-         fixed(c.h_max_db, 0) + " dB, at most " + fixed(c.vertical_speed_mps, 2) + " m/s vertically, deciding on " +
+         fixed(r.noise_level_db, 1) + " dB" +
+         (c.noise_decrease_db_per_km ? ", falling " + fixed(*c.noise_decrease_db_per_km, 1) + " dB/km below " +
+                                           (r.critical_depth_m ? fixed(*r.critical_depth_m, 0) + " m" : "no depth")
+                                     : std::string()) +
+         "; adaptive: tau_a " + fixed(c.horizon_s, 0) + " s, " +
+         (c.noise_decrease_db_per_km ? std::string("by signal excess") : "H_max " + fixed(c.h_max_db, 0) + " dB") +
+         (c.forecast ? ", forecast over " + fixed(c.forecast_horizon_s, 0) + " s" : std::string()) + ", at most " + fixed(c.vertical_speed_mps, 2) + " m/s vertically, deciding on " +
          (r.separate_model ? "its own model" : "the water itself (a perfect model)") + "\n";
   out += "receipt probability per range bin (m)\n";
   char cell[64];
@@ -54,7 +82,7 @@ std::string format_depth_adaptation_table(const DepthAdaptationConfig& c, const 
     std::snprintf(cell, sizeof cell, " %10s", bin_label(r, b).c_str());
     out += cell;
   }
-  out += "    overall  expected  mean_depth_m\n";
+  out += "    overall     SE  expected  mean_depth_m\n";
   for (const StrategyResult& s : r.strategies) {
     std::snprintf(cell, sizeof cell, "%-10s", s.name.c_str());
     out += cell;
@@ -62,7 +90,8 @@ std::string format_depth_adaptation_table(const DepthAdaptationConfig& c, const 
       std::snprintf(cell, sizeof cell, " %10.3f", s.receipt(b));
       out += cell;
     }
-    std::snprintf(cell, sizeof cell, " %10.3f %9.3f %13.1f\n", s.receipt_overall(), s.expected_overall, s.mean_depth_m);
+    std::snprintf(cell, sizeof cell, " %10.3f %6.3f %9.3f %13.1f\n", s.receipt_overall(), receipt_se(s),
+                  s.expected_overall, s.mean_depth_m);
     out += cell;
   }
   return out + verdict(r);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gram/depth_forecast_field.h"
 #include "gram/loss_objective.h"
 #include "gram/noise_depth_profile.h"
 #include "gram/validation_text.h"
@@ -107,6 +108,8 @@ std::optional<std::string> validate_depth_objective_request(const DepthObjective
     if (auto e = validate_lowpass(*r.lowpass)) return e;
   if (r.sonar)
     if (auto e = validate_sonar(*r.sonar)) return e;
+  if (r.forecast)
+    if (auto e = validate_depth_forecast_request(*r.forecast, r.horizon_s)) return e;
   return std::nullopt;
 }
 
@@ -125,6 +128,7 @@ DepthObjectiveResult compute_depth_objective(std::span<const TransmissionLoss> i
   compute_objective(request, env, out);
   filter_objective(request, out);
   out.best = best_depth(out.depth_m, out.objective_filtered, request.limits, out.bottom_m);
+  if (request.forecast) out.forecast = compute_depth_forecast(instances, env, request);
   return out;
 }
 

@@ -18,7 +18,8 @@
 //      the shallowest ALLOWED depth down over the allowed depths (resampled
 //      to ≤ 10 m if uneven or coarse); depths outside the limits keep their
 //      raw value;
-//   5. the best allowed depth (best_depth.h; ties to the shallowest).
+//   5. the best allowed depth (best_depth.h; ties to the shallowest);
+//   6. if asked, the forecast strategy (depth_forecast_field.h).
 // Every instance must share the receiver grid. All request fields are
 // validated first; an error names the field and the bound.
 // Thread-safe: pure function of its arguments.
@@ -31,6 +32,7 @@
 
 #include "acomms/gram/environment.pb.h"
 #include "gram/best_depth.h"
+#include "gram/depth_forecast.h"
 #include "gram/depth_lowpass.h"
 #include "gram/range_averaged_tl.h"
 #include "gram/range_window.h"
@@ -49,6 +51,9 @@ struct DepthObjectiveRequest {
   VehicleLimits limits;
   std::optional<LowpassOptions> lowpass;
   std::optional<SonarOptions> sonar;
+  // Deep water: also forecast over the windows ahead and plan a depth path
+  // (depth_forecast_field.h); unset: the next window only.
+  std::optional<DepthForecastRequest> forecast;
 };
 
 struct DepthObjectiveResult {
@@ -66,6 +71,7 @@ struct DepthObjectiveResult {
   std::vector<double> objective_filtered;  // after §6.4 (equals `objective` without lowpass)
   double bottom_m = 0;                     // shallowest bottom under the window
   BestDepth best;
+  std::optional<DepthForecastResult> forecast;  // when the request asked for one
 };
 
 std::optional<std::string> validate_depth_objective_request(const DepthObjectiveRequest& request);

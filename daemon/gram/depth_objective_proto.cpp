@@ -54,6 +54,14 @@ DepthObjectiveRequest request_from_proto(const DepthObjectiveQuery& q) {
     }
     r.sonar = o;
   }
+  if (q.has_forecast()) {
+    DepthForecastRequest f;
+    f.forecast_horizon_s = q.forecast().forecast_horizon_s();
+    f.current_depth_m = q.forecast().current_depth_m();
+    f.options.vertical_speed_mps = q.forecast().vertical_speed_mps();
+    f.caustic_uncertainty_m = q.forecast().caustic_uncertainty_m();
+    r.forecast = f;
+  }
   if (auto e = validate_depth_objective_request(r)) throw std::invalid_argument(*e);
   return r;
 }
@@ -80,6 +88,24 @@ DepthObjectiveReply reply_to_proto(const DepthObjectiveResult& result) {
     p->set_objective_filtered(result.objective_filtered[i]);
     if (i < result.signal_excess_db.size()) p->set_signal_excess_db(result.signal_excess_db[i]);
     if (i < result.noise_level_db.size()) p->set_noise_level_db(result.noise_level_db[i]);
+  }
+  if (result.forecast) {
+    const DepthForecastResult& f = *result.forecast;
+    DepthForecastAnswer* w = a.mutable_forecast();
+    w->set_choice(forecast_choice_name(f.decision.choice));
+    w->set_target_depth_m(f.decision.target_depth_m);
+    w->set_target_time_s(f.decision.target_time_s);
+    w->set_target_objective(f.decision.target_objective);
+    w->set_vertical_rate_mps(f.decision.vertical_rate_mps);
+    w->set_next_depth_m(f.next_depth_m);
+    w->set_forecast_horizon_s(f.horizon_used_s);
+    for (std::size_t k = 0; k < f.field.time_s.size(); ++k) {
+      DepthForecastColumn* c = w->add_columns();
+      c->set_time_s(f.field.time_s[k]);
+      c->set_window_begin_m(f.windows[k].begin_m);
+      c->set_window_end_m(f.windows[k].end_m);
+      for (double v : f.field.steer[k]) c->add_objective(v);
+    }
   }
   return a;
 }

@@ -437,6 +437,20 @@ TEST_F(GramServiceTest, AcommsctlFeedsTheEnvironmentAndPrintsTheBestDepth) {
   in.read(magic, 8);
   EXPECT_EQ(std::string(magic + 1, 3), "PNG");
 
+  // The deep-water forecast strategy (issue 32): its plan after the table.
+  r = run(ctl, {"--socket", socket_, "gram", "depth", "--range", "1000", "--speed", "1.5", "--max-depth", "90",
+                "--min-altitude", "5", "--forecast-horizon", "600", "--current-depth", "20", "--vertical-speed", "0.5"},
+          (dir_ / "ctl5").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("# forecast over 600 s (6 windows): "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("; at the next window be at "), std::string::npos) << r.out;
+  // Without the sonar equation the noise profile has nothing to act on.
+  r = run(ctl, {"--socket", socket_, "gram", "depth", "--range", "1000", "--speed", "1.5", "--max-depth", "90",
+                "--noise-decrease", "3"},
+          (dir_ / "ctl6").string());
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.err.find("--noise-decrease needs the sonar equation"), std::string::npos) << r.err;
+
   // Refused by the daemon: exit 1 and the status name.
   r = run(ctl, {"--socket", socket_, "gram", "depth", "--range", "3000", "--speed", "1.5", "--max-depth", "90",
                 "--horizon", "0"},

@@ -111,5 +111,54 @@ TEST(GramDepthObjectiveProto, TheReplyListsEveryDepth) {
   EXPECT_EQ(a.points(1).objective_filtered(), 0.35);
 }
 
+TEST(GramDepthObjectiveProto, AForecastQueryCarriesItsFieldsAndAnUnsetVerticalSpeedIsRefused) {
+  DepthObjectiveQuery q = good_query();
+  EXPECT_FALSE(request_from_proto(q).forecast);
+  q.mutable_forecast()->set_forecast_horizon_s(3600);
+  q.mutable_forecast()->set_current_depth_m(40);
+  q.mutable_forecast()->set_caustic_uncertainty_m(50);
+  EXPECT_EQ(error_of(q), "vertical_speed_mps = 0 must be a finite number greater than 0");
+  q.mutable_forecast()->set_vertical_speed_mps(0.5);
+  const DepthObjectiveRequest r = request_from_proto(q);
+  ASSERT_TRUE(r.forecast);
+  EXPECT_EQ(r.forecast->forecast_horizon_s, 3600);
+  EXPECT_EQ(r.forecast->current_depth_m, 40);
+  EXPECT_EQ(r.forecast->options.vertical_speed_mps, 0.5);
+  EXPECT_EQ(r.forecast->caustic_uncertainty_m, 50);
+  q.mutable_forecast()->set_forecast_horizon_s(60);  // shorter than one window
+  EXPECT_NE(error_of(q).find("forecast_horizon_s = 60 must be at least horizon_s = 120"), std::string::npos);
+}
+
+TEST(GramDepthObjectiveProto, TheReplyCarriesTheForecast) {
+  DepthObjectiveResult r;
+  r.window = {180, 2000, 2180, false, false};
+  r.depth_m = {10, 20};
+  r.h_bar_db = {60, 70};
+  r.band_low_db = r.band_high_db = r.h_bar_db;
+  r.objective = r.objective_filtered = {0.4, 0.3};
+  r.best = {0, 10, 0.4, true, 90};
+  DepthForecastResult f;
+  f.field.depth_m = r.depth_m;
+  f.field.time_s = {0, 120};
+  f.field.steer = {{0.4, 0.3}, {0.2, 0.5}};
+  f.windows = {r.window, {180, 2180, 2360, false, false}};
+  f.horizon_used_s = 120;
+  f.decision.choice = ForecastChoice::kOptimum;
+  f.decision.target_depth_m = 20;
+  f.decision.target_time_s = 120;
+  f.decision.target_objective = 0.5;
+  f.decision.vertical_rate_mps = 10.0 / 120;
+  f.next_depth_m = 20;
+  r.forecast = f;
+  const DepthObjectiveReply a = reply_to_proto(r);
+  ASSERT_TRUE(a.has_forecast());
+  EXPECT_EQ(a.forecast().choice(), "optimum");
+  EXPECT_EQ(a.forecast().target_depth_m(), 20);
+  EXPECT_EQ(a.forecast().next_depth_m(), 20);
+  ASSERT_EQ(a.forecast().columns_size(), 2);
+  EXPECT_EQ(a.forecast().columns(1).window_begin_m(), 2180);
+  EXPECT_EQ(a.forecast().columns(1).objective(1), 0.5);
+}
+
 }  // namespace
 }  // namespace acomms::gram
