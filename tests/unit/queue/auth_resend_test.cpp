@@ -9,7 +9,9 @@
 //
 // Also here, on the same two queues: a sealed message counts its trailer in
 // the frame it goes in (a frame never exceeds the link's max_frame_bytes),
-// and the same bytes from two senders are two messages (auth_guard.h).
+// the same bytes from two senders are two messages (auth_guard.h), and a
+// recorded Command replayed minutes later, also after the receiver's
+// restart over its store, is refused.
 // Simulated clock throughout; the sender's store is real.
 
 #include <google/protobuf/text_format.h>
@@ -104,7 +106,10 @@ class AuthResendTest : public acomms::testing::StoreFixture {
   }
   // SIGKILL: nothing more happens in the process; what the store committed
   // stays (a Submit is answered only once its message is committed).
+  // (The writer finishes what was posted first: the fixture closes the
+  // journal before the writer that would still run its work.)
   void stop_topside() {
+    if (journal_) journal_->flush();
     submitter_.reset();
     topside_.reset();
     close_store();
@@ -224,6 +229,40 @@ TEST_F(AuthResendTest, TheSameCommandFromTwoNodesInOneSecondIsDeliveredFromEach)
   EXPECT_EQ(vehicle_->auth_refusals().replayed, 2u);
   EXPECT_TRUE(vehicle_->receive(from_topside, 3).empty());
   EXPECT_EQ(vehicle_->auth_refusals().auth_failed, 1u);
+}
+
+// The must-show's recorded frames, on the simulated clock: a real Command
+// recorded and replayed minutes later, and again minutes after the
+// vehicle (its store real) was killed and restarted, is refused as
+// replayed each time; once older than the window it is refused as stale.
+TEST_F(AuthResendTest, RecordedCommandReplayedMinutesLaterAndAfterTheReceiversRestartIsRefused) {
+  stop_topside();
+  auto m = topside_codec_.new_message("qr.Command");
+  ASSERT_TRUE(pb::TextFormat::ParseFromString("dest: 1 value: 11", m.get()));
+  const std::string recorded = topside_codec_.encode(*m);
+  auto start_vehicle = [this] {
+    if (journal_) journal_->flush();
+    vehicle_.reset();
+    close_store();  // SIGKILL (what the receive committed stays: see stop_topside)
+    open_store(dir_.path() / "vehicle");
+    vehicle_ = std::make_unique<QueueManager>(vehicle_codec_, queue_config(), kVehicle, clock_, *journal_);
+    vehicle_->authenticate("qr.Command", kWindow);
+    vehicle_->restore();
+  };
+  start_vehicle();
+  ASSERT_EQ(vehicle_->receive(recorded, kTopside).size(), 1u);
+  journal_->flush();
+  at(5 * 60);
+  EXPECT_TRUE(vehicle_->receive(recorded, kTopside).empty()) << "five minutes later";
+  EXPECT_EQ(vehicle_->auth_refusals().replayed, 1u);
+  start_vehicle();
+  at(9 * 60);
+  EXPECT_TRUE(vehicle_->receive(recorded, kTopside).empty()) << "nine minutes later, after the restart";
+  EXPECT_EQ(vehicle_->auth_refusals().replayed, 1u);
+  at(kWindow + 1);
+  EXPECT_TRUE(vehicle_->receive(recorded, kTopside).empty()) << "past the window";
+  EXPECT_EQ(vehicle_->auth_refusals().stale, 1u);
+  EXPECT_EQ(vehicle_->auth_refusals().auth_failed, 0u);
 }
 
 // The guard itself keys what it accepted by sender: were two senders' bytes
