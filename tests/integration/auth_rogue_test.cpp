@@ -199,6 +199,16 @@ class AuthRogueTest : public ::testing::Test {
     return response.message_id();
   }
 
+  // What ListTypes says the trailer costs each message of example.Command.
+  uint32_t trailer_bits(int id) {
+    grpc::ClientContext context;
+    v1::ListTypesRequest request;
+    request.add_types("example.Command");
+    v1::ListTypesResponse response;
+    EXPECT_TRUE(api(socket(id))->ListTypes(&context, request, &response).ok());
+    return response.types_size() == 1 ? response.types(0).auth_trailer_bits() : 9999;
+  }
+
   v1::LinkCounters counters(int id) {
     grpc::ClientContext context;
     v1::LinkStatusResponse response;
@@ -258,6 +268,7 @@ TEST_F(AuthRogueTest, ForgedFlippedAndReplayedCommandsAreRefusedAndRealOnesArriv
   start(1);
   start(2);
   start(3);
+  EXPECT_EQ(trailer_bits(1), 48u + 64u) << "key id, time, counter and a 64-bit tag";
 
   // A real Command arrives.
   auto vehicle = std::make_unique<StreamSubscriber>(socket(1), "example.Command");
@@ -298,6 +309,7 @@ TEST_F(AuthRogueTest, ForgedFlippedAndReplayedCommandsAreRefusedAndRealOnesArriv
   ASSERT_EQ(daemons_[3]->wait(15s), std::optional<int>(0));
   write_config(3, "", peer(port_[1]) + peer(port_[2]));
   start(3);
+  EXPECT_EQ(trailer_bits(3), 0u) << "not authenticated there";
   const uint64_t failed_before = counters(1).auth_failed();
   ASSERT_GT(submit_command(3, 67), 0);
   EXPECT_TRUE(wait_until([&] { return counters(1).auth_failed() > failed_before; }, 30s, 200ms))
