@@ -61,7 +61,9 @@ std::unique_ptr<Fleet> make_fleet() {
 
 void check_round_trip(const Fleet& fleet, const google::protobuf::Message& message) {
   std::string sealed = fleet.codec.encode(message);
-  if (fleet.auth->verify(sealed, kNow, kSender, nullptr) != AuthVerdict::kOk) std::abort();
+  // Types too large to seal within their max_bytes are left plain.
+  const bool authenticated = fleet.codec.authenticated(message.GetDescriptor()->full_name());
+  if (authenticated && fleet.auth->verify(sealed, kNow, kSender, nullptr) != AuthVerdict::kOk) std::abort();
   size_t used = 0;
   auto again = fleet.codec.decode_as(message.GetDescriptor()->full_name(), sealed, &used);
   if (used != sealed.size()) std::abort();
