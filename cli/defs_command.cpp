@@ -46,8 +46,12 @@ void print_types(const google::protobuf::RepeatedPtrField<v1::TypeInfo>& types, 
   std::printf("%-32s %6s  %-12s %s\n", "TYPE", "ID", "BYTES", "MAX_BYTES");
   for (const v1::TypeInfo& type : types) {
     std::string id = type.dccl_id() < 0 ? "omit" : std::to_string(type.dccl_id());
-    std::printf("%-32s %6s  %-12s %u\n", type.name().c_str(), id.c_str(),
-                range_text(type.min_bytes(), type.max_bytes()).c_str(), type.max_bytes_allowed());
+    // An authenticated type's trailer comes on top of its DCCL bytes.
+    const std::string auth = type.auth_trailer_bits() == 0
+                                 ? ""
+                                 : "  (+" + std::to_string(type.auth_trailer_bits() / 8) + " bytes auth trailer)";
+    std::printf("%-32s %6s  %-12s %u%s\n", type.name().c_str(), id.c_str(),
+                range_text(type.min_bytes(), type.max_bytes()).c_str(), type.max_bytes_allowed(), auth.c_str());
     if (with_fields) print_fields(type);
   }
 }

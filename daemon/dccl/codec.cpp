@@ -112,6 +112,19 @@ void Codec::set_authentication(std::shared_ptr<const MessageAuthenticator> authe
     if (plan == nullptr) throw Error(Error::Kind::kSchema, "authenticated type " + type + " is not loaded");
     // Without an id a receiver cannot tell which messages carry a trailer.
     if (plan->info.omit_id) throw Error(Error::Kind::kSchema, "authenticated type " + type + " has omit_id");
+    // max_bytes is the frame the type was sized for: a sealed message
+    // larger than that could wait for a frame that never comes.
+    if (authenticator) {
+      const uint64_t sealed = plan->info.max_size_bytes() + authenticator->trailer_bytes();
+      if (sealed > plan->info.max_bytes) {
+        throw Error(Error::Kind::kSchema,
+                    "authenticated type " + type + " is up to " + std::to_string(sealed) + " bytes sealed (" +
+                        std::to_string(plan->info.max_size_bytes()) + " DCCL + " +
+                        std::to_string(authenticator->trailer_bytes()) + " trailer at " +
+                        std::to_string(authenticator->tag_bits()) + "-bit tags), more than its max_bytes " +
+                        std::to_string(plan->info.max_bytes) + ": raise max_bytes or shorten auth.tag_bits");
+      }
+    }
   }
   wire_->set_authentication(std::move(authenticator), std::move(types));
 }

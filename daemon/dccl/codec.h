@@ -116,7 +116,9 @@ class Codec {
   // types (full names) carries a key id, send time, counter and tag after
   // its DCCL bytes; encode() seals it, decode consumes it without checking
   // it (the receive side calls authenticator()->verify). Throws Error
-  // naming a type that is not loaded or has no id. Null turns it off.
+  // naming a type that is not loaded, has no id, or whose largest message
+  // with the trailer is more than its max_bytes (so a sealed message
+  // always fits the frame its type was sized for). Null turns it off.
   void set_authentication(std::shared_ptr<const MessageAuthenticator> authenticator, std::set<std::string> types);
   // Null when authentication is off.
   const MessageAuthenticator* authenticator() const;

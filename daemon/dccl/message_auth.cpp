@@ -21,7 +21,8 @@ std::string_view to_string(AuthVerdict verdict) {
   return "?";
 }
 
-MessageAuthenticator::MessageAuthenticator(unsigned tag_bits, Keyring keyring) : tag_bits_(tag_bits) {
+MessageAuthenticator::MessageAuthenticator(unsigned tag_bits, Keyring keyring, int32_t sender)
+    : tag_bits_(tag_bits), sender_(sender) {
   if (tag_bits < 32 || tag_bits > 64 || tag_bits % 8 != 0) {
     throw std::invalid_argument("auth.tag_bits " + std::to_string(tag_bits) +
                                 ": must be 32 to 64, a multiple of 8");
@@ -55,10 +56,17 @@ std::shared_ptr<const Keyring> MessageAuthenticator::keyring() const {
   return keyring_;
 }
 
-std::string MessageAuthenticator::tag(const AuthKey& key, std::string_view covered) const {
+std::string MessageAuthenticator::tag(const AuthKey& key, int32_t sender, std::string_view covered) const {
   CryptoPP::CMAC<CryptoPP::AES> cmac(reinterpret_cast<const CryptoPP::byte*>(key.key.data()), key.key.size());
+  const auto id = static_cast<uint32_t>(sender);
+  const CryptoPP::byte sender_bytes[4] = {static_cast<CryptoPP::byte>(id & 0xff),
+                                          static_cast<CryptoPP::byte>((id >> 8) & 0xff),
+                                          static_cast<CryptoPP::byte>((id >> 16) & 0xff),
+                                          static_cast<CryptoPP::byte>((id >> 24) & 0xff)};
+  cmac.Update(sender_bytes, sizeof sender_bytes);
+  cmac.Update(reinterpret_cast<const CryptoPP::byte*>(covered.data()), covered.size());
   CryptoPP::byte full[CryptoPP::AES::BLOCKSIZE];
-  cmac.CalculateDigest(full, reinterpret_cast<const CryptoPP::byte*>(covered.data()), covered.size());
+  cmac.Final(full);
   return std::string(reinterpret_cast<const char*>(full), tag_bits_ / 8);
 }
 
@@ -72,10 +80,11 @@ void MessageAuthenticator::seal(std::string& message, double now) const {
   message.push_back(static_cast<char>(ring->sign_id));
   for (int i = 0; i < 4; ++i) message.push_back(static_cast<char>((sent >> (8 * i)) & 0xff));
   message.push_back(static_cast<char>(counter));
-  message += tag(key, message);
+  message += tag(key, sender_, message);
 }
 
-AuthVerdict MessageAuthenticator::verify(std::string_view message, double now, AuthStamp* stamp) const {
+AuthVerdict MessageAuthenticator::verify(std::string_view message, double now, int32_t sender,
+                                         AuthStamp* stamp) const {
   const size_t trailer = trailer_bytes();
   if (message.size() < trailer) return AuthVerdict::kTruncated;
   const size_t at = message.size() - trailer;
@@ -89,7 +98,7 @@ AuthVerdict MessageAuthenticator::verify(std::string_view message, double now, A
   if (it == ring->keys.end()) return AuthVerdict::kUnknownKey;
   if (it->second.accept_until && now > *it->second.accept_until) return AuthVerdict::kKeyRetired;
   const size_t tag_at = at + kStampBytes;
-  const std::string expected = tag(it->second, message.substr(0, tag_at));
+  const std::string expected = tag(it->second, sender, message.substr(0, tag_at));
   // Constant time: the comparison must not tell a forger how many bytes
   // were right.
   if (!CryptoPP::VerifyBufsEqual(reinterpret_cast<const CryptoPP::byte*>(expected.data()),

@@ -12,11 +12,19 @@
 //   byte 5      counter: messages this process sealed, mod 256, so that two
 //               identical messages in one second still differ
 //   bytes 6..   tag: the first tag_bits/8 bytes (4 to 8) of AES-CMAC under
-//               the key, over everything before the tag (head, body as
-//               sent, key id, time, counter): encrypt, then tag
+//               the key, over the sender's node id (4 bytes, uint32
+//               little-endian; not sent) and everything before the tag
+//               (head, body as sent, key id, time, counter): encrypt, then
+//               tag
 //
 // so the cost is 48 + tag_bits bits (80 to 112) per message. The trailer
 // is a fixed length, so messages still concatenate without lengths.
+// The sender's id is covered but not sent: the receiver takes it from the
+// transmission (its link source), so that two nodes sealing the same
+// message in the same second are told apart at no cost in bits, and a
+// recorded message sent again under another node's id does not verify (a
+// replay cannot pass as new by changing its source). A node seals with
+// the one id it transmits under (every link's modem_id is the node's).
 // Deciding whether the stamp is fresh (window, replay) needs memory of what
 // was accepted, and that lives in the queue (queue/auth_guard.h): this
 // class only seals and checks tags.
@@ -73,9 +81,10 @@ std::string_view to_string(AuthVerdict verdict);
 class MessageAuthenticator {
  public:
   static constexpr size_t kStampBytes = 6;  // key id, time, counter
-  // Throws std::invalid_argument unless 32 <= tag_bits <= 64 and a multiple
-  // of 8, or when the keyring breaks its rules (check_keyring).
-  MessageAuthenticator(unsigned tag_bits, Keyring keyring);
+  // `sender`: the node id this process seals as (its modem id). Throws
+  // std::invalid_argument unless 32 <= tag_bits <= 64 and a multiple of 8,
+  // or when the keyring breaks its rules (check_keyring).
+  MessageAuthenticator(unsigned tag_bits, Keyring keyring, int32_t sender);
 
   // Throws std::invalid_argument naming the problem: no keys, a key of a
   // length AES does not take, a sign id that is not in the keyring.
@@ -86,20 +95,23 @@ class MessageAuthenticator {
   std::shared_ptr<const Keyring> keyring() const;
 
   unsigned tag_bits() const { return tag_bits_; }
+  int32_t sender() const { return sender_; }
   size_t trailer_bytes() const { return kStampBytes + tag_bits_ / 8; }
 
   // Appends the trailer to `message` (its DCCL bytes as sent), stamped
-  // `now` (Unix seconds) with the sign key.
+  // `now` (Unix seconds) with the sign key, as sent by sender().
   void seal(std::string& message, double now) const;
 
   // Checks the trailer at the end of `message` (DCCL bytes then trailer)
-  // at `now`; on kOk fills *stamp.
-  AuthVerdict verify(std::string_view message, double now, AuthStamp* stamp) const;
+  // at `now`, as sent by node `sender` (the transmission's source); on kOk
+  // fills *stamp.
+  AuthVerdict verify(std::string_view message, double now, int32_t sender, AuthStamp* stamp) const;
 
  private:
-  std::string tag(const AuthKey& key, std::string_view covered) const;
+  std::string tag(const AuthKey& key, int32_t sender, std::string_view covered) const;
 
   unsigned tag_bits_;
+  int32_t sender_;
   mutable std::mutex mutex_;  // guards keyring_ (the pointer, not the keys)
   std::shared_ptr<const Keyring> keyring_;
   mutable std::atomic<uint32_t> counter_{0};

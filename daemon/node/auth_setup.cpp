@@ -20,7 +20,8 @@ std::string describe(const dccl::Keyring& ring) {
 
 }  // namespace
 
-std::shared_ptr<dccl::MessageAuthenticator> make_authenticator(const v1::AuthConfig& auth, dccl::Codec& codec) {
+std::shared_ptr<dccl::MessageAuthenticator> make_authenticator(const v1::AuthConfig& auth, dccl::Codec& codec,
+                                                               int32_t own_id) {
   if (auth.type().empty()) {
     if (!auth.keyring_file().empty()) spdlog::warn("auth.keyring_file is set but auth lists no type: nothing is authenticated");
     return nullptr;
@@ -35,7 +36,7 @@ std::shared_ptr<dccl::MessageAuthenticator> make_authenticator(const v1::AuthCon
   dccl::Keyring ring = read_keyring_file(auth.keyring_file());
   const std::string described = describe(ring);
   try {
-    authenticator = std::make_shared<dccl::MessageAuthenticator>(tag_bits, std::move(ring));
+    authenticator = std::make_shared<dccl::MessageAuthenticator>(tag_bits, std::move(ring), own_id);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(e.what());
   }

@@ -21,7 +21,10 @@ namespace acomms::node {
 // Null when the section lists no type. Otherwise reads the keyring, checks
 // tag_bits, and makes `codec` seal and carry the trailer for the listed
 // types. Throws std::runtime_error naming the field or file.
-std::shared_ptr<dccl::MessageAuthenticator> make_authenticator(const v1::AuthConfig& auth, dccl::Codec& codec);
+// `own_id`: the node's id, which its seals are made for (the receiver
+// verifies them as from the transmission's source).
+std::shared_ptr<dccl::MessageAuthenticator> make_authenticator(const v1::AuthConfig& auth, dccl::Codec& codec,
+                                                               int32_t own_id);
 
 // Gives each listed type's queue its window. Throws std::runtime_error
 // naming the type (window not > 0, shorter than the queue's ttl).

@@ -70,7 +70,7 @@ void Daemon::start() {
   DefinitionLoader::load_recorded(*codec_, api_definitions);
   // Before the queues restore: stored messages of these types are sealed
   // as they are queued again.
-  authenticator_ = make_authenticator(config_.auth(), *codec_);
+  authenticator_ = make_authenticator(config_.auth(), *codec_, own_id_);
   try {
     queues_ = std::make_unique<queue::QueueManager>(*codec_, config_.queue(), own_id_, clock_, *journal_);
   } catch (const std::invalid_argument& e) {

@@ -40,21 +40,27 @@ double AuthGuard::longest_window_s() const {
   return longest;
 }
 
-std::string AuthGuard::key_of(const std::string& type, std::string_view encoded) {
+std::string AuthGuard::key_of(const std::string& type, std::optional<int32_t> sender, std::string_view encoded) {
+  // Type names hold no NUL; the sender is a fixed 5 bytes (a flag, then the
+  // id), so no two (type, sender, bytes) make one key.
   std::string key = type;
   key.push_back('\0');
+  key.push_back(sender ? '\1' : '\0');
+  const auto id = static_cast<uint32_t>(sender.value_or(0));
+  for (int i = 0; i < 4; ++i) key.push_back(static_cast<char>((id >> (8 * i)) & 0xff));
   key.append(encoded);
   return key;
 }
 
-std::optional<AuthRefusal> AuthGuard::judge(const std::string& type, std::string_view encoded,
+std::optional<AuthRefusal> AuthGuard::judge(const std::string& type, int32_t sender, std::string_view encoded,
                                             const dccl::AuthStamp& stamp, double now) const {
   ACOMMS_ASSERT_CORE_THREAD();
   const double w = window_s(type);
   // Ahead as well as behind: a stamp in the future would otherwise be
   // remembered only until W past it, but accepted long before.
   if (std::fabs(now - static_cast<double>(stamp.sent_s)) > w) return AuthRefusal::kStale;
-  if (seen_.count(key_of(type, encoded)) > 0) return AuthRefusal::kReplayed;
+  if (seen_.count(key_of(type, sender, encoded)) > 0) return AuthRefusal::kReplayed;
+  if (any_sender_seen_ && seen_.count(key_of(type, std::nullopt, encoded)) > 0) return AuthRefusal::kReplayed;
   return std::nullopt;
 }
 
@@ -79,9 +85,10 @@ void AuthGuard::refuse(AuthRefusal why, const std::string& type, int32_t src, st
   in_burst_ = 0;
 }
 
-void AuthGuard::remember(const std::string& type, std::string_view encoded, uint32_t sent_s, double now) {
+void AuthGuard::remember(const std::string& type, int32_t sender, std::string_view encoded, uint32_t sent_s,
+                         double now) {
   ACOMMS_ASSERT_CORE_THREAD();
-  std::string key = key_of(type, encoded);
+  std::string key = key_of(type, sender, encoded);
   if (seen_.insert(key).second) by_sent_.emplace(sent_s, std::move(key));
   forget(now);
 }
@@ -100,7 +107,8 @@ void AuthGuard::refill(MessageJournal& journal, double now) {
   size_t remembered = 0;
   for (const QueueEvent& event : journal.authenticated_since(forget_before(now))) {
     if (!covers(event.type) || !event.auth_sent_s) continue;
-    std::string key = key_of(event.type, event.encoded);
+    std::string key = key_of(event.type, event.auth_sender, event.encoded);
+    any_sender_seen_ = any_sender_seen_ || !event.auth_sender;
     if (seen_.insert(key).second) {
       by_sent_.emplace(*event.auth_sent_s, std::move(key));
       ++remembered;

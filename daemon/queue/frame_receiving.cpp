@@ -69,10 +69,11 @@ std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32
       JournalMessage as_event;
       as_event.src = received.src;
       as_event.dest = received.dest;
-      if (stamp) auth_guard_.remember(info->name, received.encoded, stamp->sent_s, now);
+      if (stamp) auth_guard_.remember(info->name, transmission_src, received.encoded, stamp->sent_s, now);
       emit(state, now, {.kind = QueueEventKind::kReceived, .message = as_event, .encoded = received.encoded,
                         .link_figures = link_figures,
-                        .auth_sent_s = stamp ? std::optional<uint32_t>(stamp->sent_s) : std::nullopt});
+                        .auth_sent_s = stamp ? std::optional<uint32_t>(stamp->sent_s) : std::nullopt,
+                        .auth_sender = transmission_src});
       received.seq = last_received_seq();  // the number emit() just gave it
       out.push_back(std::move(received));
     } catch (const dccl::Error& e) {
@@ -92,7 +93,7 @@ std::optional<dccl::AuthStamp> QueueManager::admit_authenticated(const std::stri
   dccl::AuthStamp stamp;
   const dccl::MessageAuthenticator* authenticator = codec_.authenticator();
   const dccl::AuthVerdict verdict =
-      authenticator ? authenticator->verify(message, now, &stamp) : dccl::AuthVerdict::kUnknownKey;
+      authenticator ? authenticator->verify(message, now, transmission_src, &stamp) : dccl::AuthVerdict::kUnknownKey;
   if (verdict != dccl::AuthVerdict::kOk) {
     std::string detail(dccl::to_string(verdict));
     if (verdict == dccl::AuthVerdict::kUnknownKey || verdict == dccl::AuthVerdict::kKeyRetired) {
@@ -103,7 +104,7 @@ std::optional<dccl::AuthStamp> QueueManager::admit_authenticated(const std::stri
     auth_guard_.refuse(AuthRefusal::kAuthFailed, type, transmission_src, detail, now);
     return std::nullopt;
   }
-  if (auto why = auth_guard_.judge(type, message, stamp, now)) {
+  if (auto why = auth_guard_.judge(type, transmission_src, message, stamp, now)) {
     std::string detail = "stamped " + std::to_string(static_cast<int64_t>(now) - int64_t{stamp.sent_s}) + " s ago";
     auth_guard_.refuse(*why, type, transmission_src, detail, now);
     return std::nullopt;

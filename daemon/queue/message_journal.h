@@ -26,6 +26,10 @@ struct JournalMessage {
   int32_t dest = 0;           // from the destination role; 0 = broadcast
   double submitted_at = 0;    // Clock seconds since the Unix epoch
   double ttl_s = 0;           // per-message ttl; 0 = the queue's
+  // An authenticated type's message as first sealed (DCCL bytes and
+  // trailer), so that a restart sends it byte-identical and a receiver that
+  // has it refuses the copy (migrations/0012); empty otherwise.
+  std::string sealed;
 };
 
 class MessageJournal {

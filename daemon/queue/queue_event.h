@@ -52,6 +52,11 @@ struct QueueEvent {
   // and forgets there what was stamped before auth_forget_before.
   std::optional<uint32_t> auth_sent_s;
   double auth_forget_before = 0;
+  // With auth_sent_s: the source of the transmission that carried it (the
+  // sender its tag was verified for, migrations/0011). nullopt in rows
+  // accepted before senders were told apart: their bytes are refused from
+  // any sender.
+  std::optional<int32_t> auth_sender;
 };
 
 struct JournalMessage;

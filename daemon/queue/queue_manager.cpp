@@ -102,6 +102,7 @@ void QueueManager::emit(TypeState& state, double now, const Change& change) {
   if (change.link_figures) event.link_figures.emplace(*change.link_figures);
   if (change.auth_sent_s) {
     event.auth_sent_s = change.auth_sent_s;
+    event.auth_sender = change.auth_sender;
     event.auth_forget_before = auth_guard_.forget_before(now);
   }
   // Numbered here, on the core thread, so numbers follow the order messages
@@ -179,6 +180,7 @@ void QueueManager::restore() {
       auto decoded = codec_.new_message(record.type);
       if (!decoded->ParseFromString(record.payload)) throw std::runtime_error("stored payload does not parse");
       message.encoded = codec_.encode(*decoded);
+      if (const std::string* first = first_seal(record, message.encoded, now)) message.encoded = *first;
     } catch (const std::exception& e) {
       spdlog::warn("queue {}: stored message {} cannot be re-encoded: {}", record.type, record.id, e.what());
       emit(state, now, {.kind = QueueEventKind::kDropped, .message = record, .detail = "cannot re-encode",
@@ -200,6 +202,24 @@ void QueueManager::restore() {
   spdlog::info("queue: {} message{} restored from the store", restored, restored == 1 ? "" : "s");
   receive_filter_.refill(journal_, now);
   auth_guard_.refill(journal_, now);
+}
+
+const std::string* QueueManager::first_seal(const JournalMessage& record, const std::string& resealed,
+                                            double now) const {
+  const dccl::MessageAuthenticator* authenticator = codec_.authenticator();
+  if (record.sealed.empty() || authenticator == nullptr || !codec_.authenticated(record.type)) return nullptr;
+  const size_t trailer = authenticator->trailer_bytes();
+  // The same DCCL bytes (definition and crypto unchanged), a trailer of
+  // today's length, and a key still accepted: otherwise the new seal goes.
+  const bool same = record.sealed.size() == resealed.size() && resealed.size() >= trailer &&
+                    record.sealed.compare(0, resealed.size() - trailer, resealed, 0, resealed.size() - trailer) == 0;
+  if (!same || authenticator->verify(record.sealed, now, authenticator->sender(), nullptr) != dccl::AuthVerdict::kOk) {
+    spdlog::info("queue {}: stored message {} sealed again at restore (its first seal no longer fits the type "
+                 "or the keyring)",
+                 record.type, record.id);
+    return nullptr;
+  }
+  return &record.sealed;
 }
 
 double QueueManager::duplicate_window_s() const {
@@ -269,6 +289,7 @@ QueuedMessage QueueManager::prepare_new(const pb::Message& message, double ttl_s
   queued.record.dest = state.roles.destination(*filled);
   queued.record.submitted_at = now;
   queued.record.ttl_s = ttl_s;
+  if (codec_.authenticated(type)) queued.record.sealed = queued.encoded;
   return queued;
 }
 

@@ -96,6 +96,9 @@ class QueueManager {
   // that were in flight come back eligible). A stored message whose type is
   // no longer loaded, or that no longer encodes, is dropped with an event.
   // The duplicate filter gets back what was received within its window.
+  // A message of an authenticated type goes out with the seal it was first
+  // given (JournalMessage::sealed), byte-identical to any copy sent before
+  // the restart.
   void restore();
 
   // Builds up to request.max_num_frames frames for a transmission. Messages
@@ -203,6 +206,11 @@ class QueueManager {
   std::optional<dccl::AuthStamp> admit_authenticated(const std::string& type, std::string_view message,
                                                      int32_t transmission_src, double now);
 
+  // restore(): the bytes `record` was first sealed with, when they can go
+  // out again as they were (so a receiver that has them refuses the copy
+  // instead of delivering it twice); nullptr when `resealed` must go.
+  const std::string* first_seal(const JournalMessage& record, const std::string& resealed, double now) const;
+
   // journal_new's checks and encoding: the message as it will be queued,
   // not yet journaled (id 0).
   QueuedMessage prepare_new(const google::protobuf::Message& message, double ttl_s) const;
@@ -223,6 +231,7 @@ class QueueManager {
     std::string_view encoded = {};      // kReceived: the message's bytes
     std::optional<std::string_view> link_figures = std::nullopt;  // kReceived: its transmission's
     std::optional<uint32_t> auth_sent_s = std::nullopt;           // kReceived, authenticated: its stamp
+    int32_t auth_sender = -1;                                      // with auth_sent_s: the transmission's src
   };
   // Counts, logs and journals `change` to a message of `state`'s type, at `now`.
   void emit(TypeState& state, double now, const Change& change);

@@ -12,8 +12,8 @@ using store::Database;
 using store::Statement;
 
 constexpr std::string_view kInsertMessage =
-    "INSERT INTO queued_messages (type, payload, src, dest, submitted_at, ttl_s) "
-    "VALUES (?, ?, ?, ?, ?, ?)";
+    "INSERT INTO queued_messages (type, payload, src, dest, submitted_at, ttl_s, sealed) "
+    "VALUES (?, ?, ?, ?, ?, ?, ?)";
 constexpr std::string_view kInsertEvent =
     "INSERT INTO event_log (time, kind, type, message_id, frame_id, src, dest, detail, encoded, seq, "
     "link_figures) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)";
@@ -23,7 +23,7 @@ constexpr std::string_view kAdvanceReceivedSeq =
 constexpr std::string_view kLastReceivedSeq = "SELECT last FROM event_sequence WHERE name = 'received'";
 constexpr std::string_view kDeleteMessage = "DELETE FROM queued_messages WHERE id = ?";
 constexpr std::string_view kLoadMessages =
-    "SELECT id, type, payload, src, dest, submitted_at, ttl_s FROM queued_messages ORDER BY id";
+    "SELECT id, type, payload, src, dest, submitted_at, ttl_s, sealed FROM queued_messages ORDER BY id";
 // By time first, so that event_log_by_time finds the window.
 constexpr std::string_view kLoadReceived =
     "SELECT time, type, src, dest, encoded FROM event_log "
@@ -32,10 +32,10 @@ constexpr std::string_view kLoadReceived =
 // OR IGNORE: the same bytes accepted twice cannot happen (the AuthGuard
 // refuses the second), but a row must never fail an event's transaction.
 constexpr std::string_view kInsertAuthAccepted =
-    "INSERT OR IGNORE INTO auth_accepted (type, encoded, sent_s) VALUES (?, ?, ?)";
+    "INSERT OR IGNORE INTO auth_accepted (type, src, encoded, sent_s) VALUES (?, ?, ?, ?)";
 constexpr std::string_view kForgetAuthAccepted = "DELETE FROM auth_accepted WHERE sent_s < ?";
 constexpr std::string_view kLoadAuthAccepted =
-    "SELECT type, encoded, sent_s FROM auth_accepted WHERE sent_s >= ? ORDER BY sent_s";
+    "SELECT type, encoded, sent_s, src FROM auth_accepted WHERE sent_s >= ? ORDER BY sent_s";
 
 // A cached statement left mid-step would hold the batch open; reset it
 // whichever way the work ends.
@@ -75,6 +75,11 @@ void SqliteJournal::append(JournalMessage message, Appended appended) {
             .bind(4, int64_t{message.dest})
             .bind_double(5, message.submitted_at)
             .bind_double(6, message.ttl_s);
+        if (message.sealed.empty()) {
+          insert.bind_null(7);
+        } else {
+          insert.bind_blob(7, message.sealed);
+        }
         insert.step();
         message.id = static_cast<int64_t>(sqlite3_last_insert_rowid(db.handle()));
         // Its "queued" event rides in the same commit.
@@ -150,7 +155,13 @@ void SqliteJournal::write_event(const QueueEvent& event) {
     // which will be recognised, even after a crash.
     Statement& accepted = writer_.prepared(kInsertAuthAccepted);
     ResetOnExit reset_accepted(accepted);
-    accepted.bind(1, event.type).bind_blob(2, event.encoded).bind(3, int64_t{*event.auth_sent_s});
+    accepted.bind(1, event.type);
+    if (event.auth_sender) {
+      accepted.bind(2, int64_t{*event.auth_sender});
+    } else {
+      accepted.bind_null(2);
+    }
+    accepted.bind_blob(3, event.encoded).bind(4, int64_t{*event.auth_sent_s});
     accepted.step();
     Statement& forget = writer_.prepared(kForgetAuthAccepted);
     ResetOnExit reset_forget(forget);
@@ -182,6 +193,7 @@ std::vector<JournalMessage> SqliteJournal::load() {
           m.dest = static_cast<int32_t>(query.column_int64(4));
           m.submitted_at = query.column_double(5);
           m.ttl_s = query.column_double(6);
+          if (!query.is_null(7)) m.sealed = query.column_blob(7);
         }
         return messages;
       })
@@ -220,6 +232,7 @@ std::vector<QueueEvent> SqliteJournal::authenticated_since(double sent_since) {
           e.type = query.column_text(0);
           e.encoded = query.column_blob(1);
           e.auth_sent_s = static_cast<uint32_t>(query.column_int64(2));
+          if (!query.is_null(3)) e.auth_sender = static_cast<int32_t>(query.column_int64(3));
         }
         return events;
       })

@@ -20,7 +20,8 @@ void add_file(const pb::FileDescriptor* file, std::set<std::string>* seen, pb::F
   file->CopyTo(set->add_file());
 }
 
-void fill_type(const dccl::TypeInfo& info, bool fields, bool descriptors, v1::TypeInfo* out) {
+void fill_type(const dccl::Codec& codec, const dccl::TypeInfo& info, bool fields, bool descriptors,
+               v1::TypeInfo* out) {
   out->set_name(info.name);
   out->set_dccl_id(info.omit_id ? -1 : info.id);
   out->set_min_bytes(info.min_size_bytes());
@@ -28,6 +29,8 @@ void fill_type(const dccl::TypeInfo& info, bool fields, bool descriptors, v1::Ty
   out->set_max_bytes_allowed(info.max_bytes);
   out->set_codec_version(info.codec_version);
   out->set_file(info.descriptor->file()->name());
+  // The trailer's cost, so a budget shows what goes on the water.
+  if (codec.authenticated(info.name)) out->set_auth_trailer_bits(codec.authenticator()->trailer_bytes() * 8);
   if (fields) {
     for (const dccl::FieldInfo& field : info.fields) {
       v1::FieldBudget* budget = out->add_fields();
@@ -71,7 +74,7 @@ grpc::Status AcommsService::LoadDefinitions(grpc::ServerContext* context, const 
   try {
     std::vector<const dccl::TypeInfo*> types =
         node_.core.call([&] { return node_.definitions.load(*request); });
-    for (const dccl::TypeInfo* info : types) fill_type(*info, true, false, response->add_types());
+    for (const dccl::TypeInfo* info : types) fill_type(node_.codec, *info, true, false, response->add_types());
   } catch (const DefinitionError& e) {
     return to_status(e);
   }
@@ -84,14 +87,14 @@ grpc::Status AcommsService::ListTypes(grpc::ServerContext* context, const v1::Li
   auto stable = node_.submitter.types_stable();
   if (request->types().empty()) {
     for (const dccl::TypeInfo* info : node_.codec.types()) {
-      fill_type(*info, request->fields(), request->descriptors(), response->add_types());
+      fill_type(node_.codec, *info, request->fields(), request->descriptors(), response->add_types());
     }
     return grpc::Status::OK;
   }
   for (const std::string& name : request->types()) {
     const dccl::TypeInfo* info = node_.codec.find_type(name);
     if (info == nullptr) return type_not_loaded(name);
-    fill_type(*info, request->fields(), request->descriptors(), response->add_types());
+    fill_type(node_.codec, *info, request->fields(), request->descriptors(), response->add_types());
   }
   return grpc::Status::OK;
 }

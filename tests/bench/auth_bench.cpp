@@ -39,7 +39,7 @@ std::unique_ptr<Setup> make(bool encrypted, bool authenticated) {
     acomms::dccl::Keyring ring;
     ring.keys[1].key = std::string(16, 'k');
     ring.sign_id = 1;
-    s->auth = std::make_shared<MessageAuthenticator>(64, ring);
+    s->auth = std::make_shared<MessageAuthenticator>(64, ring, 1);
     s->codec.set_authentication(s->auth, {kType});
   }
   s->message = s->codec.new_message(kType);
@@ -59,7 +59,7 @@ void DecodeAndVerify(benchmark::State& state, bool encrypted, bool authenticated
   for (auto _ : state) {
     size_t used = 0;
     benchmark::DoNotOptimize(s->codec.decode_as(kType, bytes, &used));
-    if (s->auth && s->auth->verify(std::string_view(bytes).substr(0, used), kNow, nullptr) != AuthVerdict::kOk) {
+    if (s->auth && s->auth->verify(std::string_view(bytes).substr(0, used), kNow, 1, nullptr) != AuthVerdict::kOk) {
       state.SkipWithError("tag did not verify");
       break;
     }

@@ -3,16 +3,19 @@
 // key and example.Command is authenticated; a rogue node (3, its own
 // acommsd) has the wrong key, then none. The rogue's radio also does what a
 // daemon will not: the test listens as one more peer of the topside,
-// records its real frames, and sends copies (bit-flipped, or as they were)
-// to the vehicle's modem from the rogue's position, again after the
-// vehicle was SIGKILLed and restarted.
+// records its real frames, and sends copies (bit-flipped, as they were, or
+// as they were but under the rogue's own id) to the vehicle's modem from
+// the rogue's position, again after the vehicle was SIGKILLed and
+// restarted.
 //
 // Shown: no forged, altered or replayed Command reaches the vehicle's
 // subscribers or event log; each is counted under its reason in
 // LinkStatus; the real Commands arrive exactly once. Real time (the
-// daemons' clocks), because the kill and restart need real processes; the
-// window's stale rule and the key roll-over are shown on the simulated
-// clock (tests/unit/queue/auth_guard_test.cpp).
+// daemons' clocks), because the kill and restart need real processes; a
+// replay minutes later (and minutes later after the receiver's restart),
+// the window's stale rule and the key roll-over are shown on the simulated
+// clock (tests/unit/queue/auth_guard_test.cpp, auth_resend_test.cpp), so
+// that this test stays short.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -98,14 +101,16 @@ class RogueRadio {
     return std::nullopt;
   }
 
-  // Sends `envelope` as node 3, from x = 150 m, starting now, to `port`.
-  // Short (10 ms), so that it seldom overlaps the nodes' own packets: the
-  // channel is busy with one every slot.
-  void send(drivers::SimEnvelope envelope, int port) {
-    envelope.sender = 3;
-    // The rogue's modem sends the recorded frame as its own transmission
-    // (DATA under another node's id would be a poll of that node).
-    envelope.transmission.set_src(3);
+  // Sends `envelope` from the rogue's modem (node 3, x = 150 m), starting
+  // now, to `port`. Short (10 ms), so that it seldom overlaps the nodes'
+  // own packets: the channel is busy with one every slot. The packet is
+  // replayed whole, its source included, unless `as_src` gives another.
+  void send(drivers::SimEnvelope envelope, int port, std::optional<int32_t> as_src = std::nullopt) {
+    if (as_src) envelope.transmission.set_src(*as_src);
+    // The sim's envelope names the transmitting modem (a real receiver
+    // knows only the header): the id the packet claims, from the rogue's
+    // position.
+    envelope.sender = envelope.transmission.src();
     envelope.duration = std::chrono::milliseconds(10);
     envelope.position = {150, 0, 0};
     envelope.start = core::Clock::time_point(std::chrono::duration_cast<core::Clock::time_point::duration>(
@@ -194,6 +199,16 @@ class AuthRogueTest : public ::testing::Test {
     return response.message_id();
   }
 
+  // What ListTypes says the trailer costs each message of example.Command.
+  uint32_t trailer_bits(int id) {
+    grpc::ClientContext context;
+    v1::ListTypesRequest request;
+    request.add_types("example.Command");
+    v1::ListTypesResponse response;
+    EXPECT_TRUE(api(socket(id))->ListTypes(&context, request, &response).ok());
+    return response.types_size() == 1 ? response.types(0).auth_trailer_bits() : 9999;
+  }
+
   v1::LinkCounters counters(int id) {
     grpc::ClientContext context;
     v1::LinkStatusResponse response;
@@ -215,10 +230,11 @@ class AuthRogueTest : public ::testing::Test {
   // The rogue's radio sends `envelope` to the vehicle until `counted` (of
   // the vehicle's counters) went up by one: a copy can be lost to a
   // collision or to the vehicle's own transmission (half duplex).
-  bool inject_until_counted(drivers::SimEnvelope envelope, const std::function<uint64_t(const v1::LinkCounters&)>& counted) {
+  bool inject_until_counted(drivers::SimEnvelope envelope, const std::function<uint64_t(const v1::LinkCounters&)>& counted,
+                            std::optional<int32_t> as_src = std::nullopt) {
     const uint64_t before = counted(counters(1));
     for (int attempt = 0; attempt < 5; ++attempt) {
-      radio_.send(envelope, port_[1]);
+      radio_.send(envelope, port_[1], as_src);
       if (wait_until([&] { return counted(counters(1)) > before; }, 8s, 100ms)) {
         return counted(counters(1)) == before + 1;
       }
@@ -252,6 +268,7 @@ TEST_F(AuthRogueTest, ForgedFlippedAndReplayedCommandsAreRefusedAndRealOnesArriv
   start(1);
   start(2);
   start(3);
+  EXPECT_EQ(trailer_bits(1), 48u + 64u) << "key id, time, counter and a 64-bit tag";
 
   // A real Command arrives.
   auto vehicle = std::make_unique<StreamSubscriber>(socket(1), "example.Command");
@@ -271,8 +288,11 @@ TEST_F(AuthRogueTest, ForgedFlippedAndReplayedCommandsAreRefusedAndRealOnesArriv
     frame[byte] = static_cast<char>(frame[byte] ^ 0x04);
     EXPECT_TRUE(inject_until_counted(flipped, auth_failed)) << "byte " << byte << "\n" << daemons_[1]->stderr_text();
   }
-  // The real frame, replayed.
+  // The real frame, replayed as it was (the topside's id in its header).
   EXPECT_TRUE(inject_until_counted(recorded, replayed)) << daemons_[1]->stderr_text();
+  // And under the rogue's own id: the tag covers the sender, so it does not
+  // pass for a new message from node 3.
+  EXPECT_TRUE(inject_until_counted(recorded, auth_failed, 3)) << daemons_[1]->stderr_text();
 
   EXPECT_EQ(seqs(vehicle->received()), std::vector<int>{1});
 
@@ -289,6 +309,7 @@ TEST_F(AuthRogueTest, ForgedFlippedAndReplayedCommandsAreRefusedAndRealOnesArriv
   ASSERT_EQ(daemons_[3]->wait(15s), std::optional<int>(0));
   write_config(3, "", peer(port_[1]) + peer(port_[2]));
   start(3);
+  EXPECT_EQ(trailer_bits(3), 0u) << "not authenticated there";
   const uint64_t failed_before = counters(1).auth_failed();
   ASSERT_GT(submit_command(3, 67), 0);
   EXPECT_TRUE(wait_until([&] { return counters(1).auth_failed() > failed_before; }, 30s, 200ms))
@@ -312,7 +333,7 @@ TEST_F(AuthRogueTest, ForgedFlippedAndReplayedCommandsAreRefusedAndRealOnesArriv
   EXPECT_EQ(seqs(restarted->received()), std::vector<int>{2});
   EXPECT_EQ(commands_received(), 2) << "only the two real Commands are in the vehicle's event log";
   const v1::LinkCounters after = counters(1);
-  EXPECT_EQ(after.auth_replayed(), 1u);
+  EXPECT_EQ(after.auth_replayed(), 1u) << "the counters start again at the restart: the replay after it";
   EXPECT_GE(after.auth_failed(), 1u);
   EXPECT_EQ(after.auth_stale(), 0u);
 }

@@ -92,7 +92,7 @@ constexpr const char* kProto = R"(syntax = "proto2";
 import "dccl/option_extensions.proto";
 package ka;
 message Command {
-  option (dccl.msg) = { codec_version: 4 id: 5 max_bytes: 16 };
+  option (dccl.msg) = { codec_version: 4 id: 5 max_bytes: 32 };
   optional int32 value = 1 [(dccl.field) = { min: 0 max: 1000 }];
 }
 )";
@@ -114,7 +114,7 @@ class AuthSetupTest : public KeyringFileTest {
   }
   std::string error_of_setup(const v1::AuthConfig& auth) {
     try {
-      make_authenticator(auth, codec_);
+      make_authenticator(auth, codec_, 1);
     } catch (const std::runtime_error& e) {
       return e.what();
     }
@@ -130,9 +130,9 @@ TEST_F(AuthSetupTest, BadSectionsAreStartUpErrorsNamingTheField) {
   v1::AuthConfig unknown = config(keyring);
   unknown.mutable_type(0)->set_type("ka.Nothing");
   EXPECT_THAT(error_of_setup(unknown), HasSubstr("authenticated type ka.Nothing is not loaded"));
-  EXPECT_EQ(make_authenticator(v1::AuthConfig(), codec_), nullptr) << "no section: nothing authenticated";
+  EXPECT_EQ(make_authenticator(v1::AuthConfig(), codec_, 1), nullptr) << "no section: nothing authenticated";
   EXPECT_FALSE(codec_.authenticated("ka.Command"));
-  auto authenticator = make_authenticator(config(keyring, 32), codec_);
+  auto authenticator = make_authenticator(config(keyring, 32), codec_, 1);
   ASSERT_NE(authenticator, nullptr);
   EXPECT_EQ(authenticator->trailer_bytes(), 10u);
   EXPECT_TRUE(codec_.authenticated("ka.Command"));
@@ -140,7 +140,7 @@ TEST_F(AuthSetupTest, BadSectionsAreStartUpErrorsNamingTheField) {
 
 TEST_F(AuthSetupTest, ReloadTakesNewKeysAndKeepsTheOldOnesWhenTheFileIsBad) {
   const std::string keyring = write("key 1 " + kKey1 + "\nsign 1\n");
-  auto authenticator = make_authenticator(config(keyring), codec_);
+  auto authenticator = make_authenticator(config(keyring), codec_, 1);
   ASSERT_NE(authenticator, nullptr);
   write("key 1 " + kKey1 + "\nkey 2 " + kKey2 + "\nsign 2\n");
   EXPECT_TRUE(reload_keyring(config(keyring), *authenticator));

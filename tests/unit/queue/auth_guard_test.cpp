@@ -30,7 +30,7 @@ constexpr const char* kProto = R"(syntax = "proto2";
 import "dccl/option_extensions.proto";
 package qa;
 message Command {
-  option (dccl.msg) = { codec_version: 4 id: 5 max_bytes: 16 };
+  option (dccl.msg) = { codec_version: 4 id: 5 max_bytes: 32 };
   optional int32 src = 1 [(dccl.field) = { min: 0 max: 30 }];
   optional int32 dest = 2 [(dccl.field) = { min: 0 max: 30 }];
   optional int32 value = 3 [(dccl.field) = { min: 0 max: 1000 }];
@@ -70,12 +70,12 @@ class AuthGuardTest : public testing::QueueManagerFixture {
       codec->load((dir_ / "qa.proto").string());
       codec->set_clock([this] { return clock_.now_seconds(); });
     }
-    receiver_auth_ = std::make_shared<dccl::MessageAuthenticator>(64, ring({{1, 'a'}}, 1));
+    receiver_auth_ = std::make_shared<dccl::MessageAuthenticator>(64, ring({{1, 'a'}}, 1), kOwnId);
     codec_.set_authentication(receiver_auth_, {"qa.Command"});
-    sender_.set_authentication(std::make_shared<dccl::MessageAuthenticator>(64, ring({{1, 'a'}}, 1)),
+    sender_.set_authentication(std::make_shared<dccl::MessageAuthenticator>(64, ring({{1, 'a'}}, 1), kPeer),
                                {"qa.Command"});
     // Knows the format and the key id, not the key.
-    rogue_.set_authentication(std::make_shared<dccl::MessageAuthenticator>(64, ring({{1, 'r'}}, 1)),
+    rogue_.set_authentication(std::make_shared<dccl::MessageAuthenticator>(64, ring({{1, 'r'}}, 1), kPeer),
                               {"qa.Command"});
     make();
   }
@@ -182,8 +182,8 @@ TEST_F(AuthGuardTest, KeyRollAcceptsBothKeysUntilTheOldOnesTimeThenOnlyTheNew) {
   dccl::Codec late;  // a vehicle still signing with key 1
   late.load((dir_ / "qa.proto").string());
   late.set_clock([this] { return clock_.now_seconds(); });
-  late.set_authentication(std::make_shared<dccl::MessageAuthenticator>(64, ring({{1, 'a'}}, 1)), {"qa.Command"});
-  sender_.set_authentication(std::make_shared<dccl::MessageAuthenticator>(64, ring({{2, 'b'}}, 2)),
+  late.set_authentication(std::make_shared<dccl::MessageAuthenticator>(64, ring({{1, 'a'}}, 1), kPeer), {"qa.Command"});
+  sender_.set_authentication(std::make_shared<dccl::MessageAuthenticator>(64, ring({{2, 'b'}}, 2), kPeer),
                              {"qa.Command"});
   at(50);
   EXPECT_EQ(delivered(command(late, 1)), 1u) << "old key inside the overlap";
