@@ -59,6 +59,11 @@ std::string link_text(const v1::LinkFigures& link) {
   if (link.has_delay_spread_s()) add("delay spread " + number_text(link.delay_spread_s()) + " s");
   if (link.has_bad_frames()) add("bad frames " + std::to_string(link.bad_frames()));
   if (link.has_range_m()) add("range " + number_text(link.range_m()) + " m");
+  if (link.has_predicted_snr_db()) {
+    add("predicted SNR " + number_text(link.predicted_snr_db()) + " dB" +
+        (link.has_predicted_tl_db() ? " (TL " + number_text(link.predicted_tl_db()) + " dB)" : ""));
+  }
+  if (link.has_decoded()) add(link.decoded() ? "decoded" : "lost");
   // The driver's free-text summary repeats what it measured (--json has
   // it); shown only when it is all there is.
   if (text.size() == unmeasured && !link.link_quality().empty()) add(link.link_quality());
@@ -99,7 +104,8 @@ void run_events(const GlobalOptions& global, const EventsOptions& options) {
 }  // namespace
 
 const std::vector<std::string>& event_kinds() {
-  static const std::vector<std::string> kinds = {"queued", "sent", "acked", "expired", "dropped", "retry", "received"};
+  static const std::vector<std::string> kinds = {"queued", "sent",  "acked",   "expired",
+                                                 "dropped", "retry", "received", "packet"};
   return kinds;
 }
 
@@ -123,12 +129,15 @@ void add_events_command(CLI::App& app, const GlobalOptions& global) {
   events->footer(
       "Oldest first: each message's story (queued, sent in a frame, acked, retried, expired, dropped "
       "or cancelled) and what was received, with the link figures it arrived with (who transmitted, "
-      "rate, packet type, SNR, signal level, MSE, ...; \"link\" in --json). T is seconds since the Unix epoch, \"now\", or relative "
+      "rate, packet type, SNR, signal level, MSE, ...; \"link\" in --json). A \"packet\" event is one packet "
+      "heard from another node, decoded or lost, with its figures and, when known, the model's predicted "
+      "SNR and TL (what `acommsctl link calibrate` fits). T is seconds since the Unix epoch, \"now\", or relative "
       "to now: -30s, -10m, -2h, -1d.\n\n"
       "Examples:\n"
       "  acommsctl events --since -10m\n"
       "  acommsctl events --message 42\n"
-      "  acommsctl events --kind dropped --kind expired --type gv.NavigationReport --since -2h");
+      "  acommsctl events --kind dropped --kind expired --type gv.NavigationReport --since -2h\n"
+      "  acommsctl events --kind packet --since -1h");
   events->callback([&global] { run_events(global, options); });
 }
 

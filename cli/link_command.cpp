@@ -11,6 +11,7 @@
 
 #include "api_client.h"
 #include "global_options.h"
+#include "link_calibrate_command.h"
 #include "link_extra_command.h"
 #include "link_raw_command.h"
 #include "output.h"
@@ -228,6 +229,7 @@ void add_link_command(CLI::App& app, const GlobalOptions& global) {
 
   add_link_raw_command(*link, global);
   add_link_extra_commands(*link, global);
+  add_link_calibrate_command(*link, global);
 
   CLI::App* cycle = link->add_subcommand("cycle", "Replace the MAC's TDMA cycle of slots");
   cycle->add_option("SLOT", cycle_options.slots,

@@ -20,7 +20,7 @@ _acommsctl() {
   for ((i = 1; i < COMP_CWORD; i++)); do
     word="${COMP_WORDS[i]}"
     case "${path:+$path }$word" in
-      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link enable"|"link disable"|"link raw"|"link ping"|"link lbl"|"link mini"|"link cycle"|"events"|"nav"|"track"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"sim depth-adaptation"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"gram depth"|"gram env"|"gram env show"|"gram env update"|"geov"|"geov serve"|"completion") path="${path:+$path }$word" ;;
+      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link enable"|"link disable"|"link raw"|"link ping"|"link lbl"|"link mini"|"link calibrate"|"link cycle"|"events"|"nav"|"track"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"sim depth-adaptation"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"gram depth"|"gram env"|"gram env show"|"gram env update"|"geov"|"geov serve"|"completion") path="${path:+$path }$word" ;;
     esac
   done
   case "$path" in
@@ -142,7 +142,7 @@ _acommsctl() {
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "status enable disable raw ping lbl mini cycle --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "status enable disable raw ping lbl mini calibrate cycle --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "link status")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -206,6 +206,16 @@ _acommsctl() {
         --wait|--timeout) COMPREPLY=(); return ;;
       esac
       COMPREPLY=($(compgen -W "--help -h --wait --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "link calibrate")
+      case "$prev" in
+        --png) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --since|--timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "--help -h --since --png --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "link cycle")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -217,7 +227,7 @@ _acommsctl() {
       COMPREPLY=($(compgen -W "--help -h --json --socket -s --timeout --ca --cert --key --insecure" -- "$cur")) ;;
     "events")
       case "$prev" in
-        --kind) COMPREPLY=($(compgen -W "queued sent acked expired dropped retry received" -- "$cur")); return ;;
+        --kind) COMPREPLY=($(compgen -W "queued sent acked expired dropped retry received packet" -- "$cur")); return ;;
         --type) COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); return ;;
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;

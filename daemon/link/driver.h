@@ -56,6 +56,11 @@ struct DriverCallbacks {
   // the sender to forget the message, so it must not go out while a crash
   // could still lose the only copy. Unset: at once (no store).
   std::function<void(std::function<void()> then)> after_receipt_durable;
+  // A packet was heard but did not decode (the simulator's failed draw):
+  // src, dest, type, the rate whose reception curve applied, time, and the
+  // figures the driver has (the model's prediction); never frames. For the
+  // record only (a "packet" event, acommsctl link calibrate). Unset: dropped.
+  std::function<void(const v1::ModemTransmission&)> on_reception_failed;
 };
 
 // A failure of the driver or its device (port gone, peer unreachable). The

@@ -108,6 +108,7 @@ void LinkController::run() {
     }
   };
   callbacks.after_receipt_durable = options_.after_receipt_durable;
+  callbacks.on_reception_failed = [this](const v1::ModemTransmission& t) { record_packet(t, false); };
   driver_.start(std::move(callbacks));
   mac_.start([this](const v1::ModemTransmission& t) {
     // The driver's data request, if any, comes within this call.
@@ -209,6 +210,14 @@ uint32_t LinkController::frames_for_slot(const v1::ModemTransmission& transmissi
 void LinkController::on_receive(const v1::ModemTransmission& transmission) {
   ACOMMS_ASSERT_CORE_THREAD();
   mac_.on_receive(transmission);
+  if (transmission.has_figures()) {
+    // Frameless packets (polls, ACKs) are mini-packets, FSK whatever rate
+    // field they carry: rate 0's reception curve judges them.
+    v1::ModemTransmission heard = transmission;
+    if (heard.type() != v1::ModemTransmission::DATA || heard.frame_size() == 0) heard.set_rate(0);
+    heard.clear_frame();
+    record_packet(heard, true);
+  }
   // Any packet from a node says this link reaches it (link_choice.h).
   const bool from_other = transmission.src() != own_id_ && transmission.src() != queue::kBroadcast;
   if (options_.choice != nullptr && from_other &&
@@ -247,6 +256,18 @@ void LinkController::on_receive(const v1::ModemTransmission& transmission) {
       deliver_(std::move(message), transmission);
     }
   }
+}
+
+void LinkController::record_packet(const v1::ModemTransmission& transmission, bool decoded) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (transmission.src() == own_id_ || transmission.src() < 0) return;
+  v1::LinkFigures figures = link_figures(transmission);
+  // Every frame bad ($CACST): heard, not decoded, though the driver passed it on.
+  const v1::ReceptionFigures& f = transmission.figures();
+  if (f.frames() > 0 && f.bad_frames() >= f.frames()) decoded = false;
+  figures.set_decoded(decoded);
+  figures.clear_link_quality();  // the same figures again, as text: not worth a row each
+  queues_.record_packet(transmission.src(), transmission.dest(), figures.SerializeAsString());
 }
 
 void LinkController::deliver_driver_specific(const v1::ModemTransmission& transmission) {

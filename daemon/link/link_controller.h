@@ -120,6 +120,10 @@ class LinkController {
   // A received DRIVER_SPECIFIC: each extension message set goes to the
   // subscribers as a message of its own type (not kept in the store).
   void deliver_driver_specific(const v1::ModemTransmission& transmission);
+  // A "packet" event for a packet from another node that came with figures
+  // (measured and, when the driver has it, predicted SNR), decoded or not:
+  // the field data acommsctl link calibrate fits.
+  void record_packet(const v1::ModemTransmission& transmission, bool decoded);
   void on_transmit_result(const v1::ModemTransmission& transmission, bool ok, const std::string& error);
 
   int32_t own_id_;

@@ -19,6 +19,8 @@ v1::LinkFigures link_figures(const v1::ModemTransmission& transmission) {
   if (f.has_bad_frames()) link.set_bad_frames(f.bad_frames());
   if (f.has_noise_db()) link.set_noise_db(f.noise_db());
   if (f.has_range_m()) link.set_range_m(f.range_m());
+  if (f.has_predicted_tl_db()) link.set_predicted_tl_db(f.predicted_tl_db());
+  if (f.has_predicted_snr_db()) link.set_predicted_snr_db(f.predicted_snr_db());
   return link;
 }
 

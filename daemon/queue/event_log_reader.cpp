@@ -9,7 +9,7 @@ namespace {
 constexpr QueueEventKind kAllKinds[] = {QueueEventKind::kQueued,  QueueEventKind::kSent,
                                         QueueEventKind::kAcked,   QueueEventKind::kExpired,
                                         QueueEventKind::kDropped, QueueEventKind::kRetry,
-                                        QueueEventKind::kReceived};
+                                        QueueEventKind::kReceived, QueueEventKind::kPacket};
 
 // "?, ?, ?" for an IN list of n values.
 std::string placeholders(size_t n) {

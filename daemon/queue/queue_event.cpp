@@ -22,6 +22,8 @@ std::string_view to_string(QueueEventKind kind) {
       return "retry";
     case QueueEventKind::kReceived:
       return "received";
+    case QueueEventKind::kPacket:
+      return "packet";
   }
   return "unknown";
 }

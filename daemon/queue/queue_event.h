@@ -18,6 +18,10 @@ enum class QueueEventKind {
   kDropped,   // pushed out by a full queue, or refused by one
   kRetry,     // sent, not acknowledged: eligible again
   kReceived,  // arrived from the link and was passed on
+  // Not a message's fate: one packet heard from another node, decoded or
+  // not, with its link figures (measured and predicted SNR; LinkFigures.
+  // decoded). type "" and message_id 0. What acommsctl link calibrate fits.
+  kPacket,
 };
 
 std::string_view to_string(QueueEventKind kind);

@@ -87,6 +87,7 @@ void QueueManager::emit(TypeState& state, double now, const Change& change) {
     case QueueEventKind::kDropped: ++s.dropped; break;
     case QueueEventKind::kRetry: ++s.retried; break;
     case QueueEventKind::kReceived: ++s.received; break;
+    case QueueEventKind::kPacket: break;  // never a message's (record_packet)
   }
   QueueEvent event;
   event.kind = kind;
@@ -118,6 +119,17 @@ void QueueManager::emit(TypeState& state, double now, const Change& change) {
                 event.detail.empty() ? "" : ": " + event.detail);
   }
   if (!change.already_journaled) journal_.record(event);
+}
+
+void QueueManager::record_packet(int32_t src, int32_t dest, std::string link_figures) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  QueueEvent event;
+  event.kind = QueueEventKind::kPacket;
+  event.time = clock_.now_seconds();
+  event.src = src;
+  event.dest = dest;
+  event.link_figures = std::move(link_figures);
+  journal_.record(event);
 }
 
 int64_t QueueManager::take_received_seq() {

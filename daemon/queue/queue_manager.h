@@ -124,6 +124,10 @@ class QueueManager {
   std::vector<ReceivedMessage> receive(std::string_view frame, int32_t transmission_src,
                                        std::optional<std::string_view> link_figures = std::nullopt);
 
+  // Logs a "packet" event (QueueEventKind::kPacket): one packet heard from
+  // `src`, with its serialized acomms.v1.LinkFigures. Core thread only.
+  void record_packet(int32_t src, int32_t dest, std::string link_figures);
+
   // Drops messages past their ttl now (also done on every build_frames).
   void expire();
 

@@ -268,6 +268,16 @@ TEST_F(AcommsctlApi, FullQueueThatRefusesNewIsResourceExhausted) {
   EXPECT_EQ(counted.queues(0).dropped(), 0u);
 }
 
+TEST_F(AcommsctlApi, LinkCalibrateWithTooFewPacketsRefusesSayingWhatItNeeds) {
+  RunResult result = ctl({"link", "calibrate", "--since", "-1h"});
+  EXPECT_EQ(result.exit_code, 1) << result.out << result.err;
+  EXPECT_NE(result.err.find("too few data to calibrate: 0 packets with a model prediction in the event log since -1h"),
+            std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find("at least 10 decoded packets"), std::string::npos) << result.err;
+  EXPECT_EQ(result.out.find("physics {"), std::string::npos) << result.out;
+}
+
 TEST_F(AcommsctlApi, InteractiveSendReadsAnswersFromAPipe) {
   // header.src: out of bounds, then good; header.dest skipped; depth: not a
   // number, then good; mode; fault skipped; battery; note, blob skipped.

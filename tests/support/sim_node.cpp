@@ -19,6 +19,7 @@ SimNode::SimNode(const SimNodeSetup& setup, core::SimulatedScheduler& scheduler,
   driver_config.set_name("sim");
   driver_config.set_modem_id(static_cast<uint32_t>(setup.id));
   driver_config.mutable_sim()->mutable_position()->set_x(setup.x);
+  if (setup.configure_driver) setup.configure_driver(driver_config);
   driver = std::make_unique<drivers::SimDriver>(driver_config, scheduler, std::move(channel));
   if (setup.wrap_driver) wrapper = setup.wrap_driver(*driver);
 

@@ -43,6 +43,8 @@ struct SimNodeSetup {
   bool link_options_from_mac = false;
   // A driver between the link controller and the sim driver, or none.
   std::function<std::unique_ptr<link::Driver>(link::Driver& sim)> wrap_driver;
+  // Changes to the sim driver's config before it is built (physics...), or none.
+  std::function<void(v1::DriverConfig& config)> configure_driver;
 };
 
 class SimNode {

@@ -60,6 +60,9 @@ MicroModemDriver::MicroModemDriver(const v1::DriverConfig& config, core::Schedul
             [this](const ModemTransmission& rx) { sequence_.on_received(rx); },
             [this] { return now_seconds(); }}) {
   if (port_ == nullptr) throw std::invalid_argument("micromodem driver built without a port");
+  reception_.set_on_failed([this](const ModemTransmission& lost) {
+    if (sequence_.running() && sequence_.callbacks().on_reception_failed) sequence_.callbacks().on_reception_failed(lost);
+  });
 }
 
 MicroModemDriver::~MicroModemDriver() { stop(); }

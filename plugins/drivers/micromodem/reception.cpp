@@ -80,7 +80,7 @@ void Reception::on_message(const nmea::TransactionMessage& message) {
   if (message.is_bad_crc()) {
     // In place of a frame's $CARXD (or of a mini-packet): the frame is lost.
     ++counters_.bad_frames;
-    open();
+    ++open().bad_frames;
   } else if (message.is_packet_timeout()) {
     ++counters_.packet_timeouts;
   }
@@ -96,7 +96,21 @@ void Reception::close(const nmea::ReceiveStatistics* statistics) {
   if (!record_) return;
   Record record = std::move(*record_);
   record_.reset();
-  if (record.frames.empty()) return;  // a cycle-init, an ACK, a blank or damaged packet
+  if (record.frames.empty()) {
+    // A cycle-init, an ACK, a blank or a damaged packet; only the damaged
+    // one, its sender known, is worth telling (heard and lost).
+    if (record.bad_frames > 0 && record.cycle && statistics != nullptr && statistics->mode != 2 && on_failed_) {
+      v1::ModemTransmission lost;
+      lost.set_type(v1::ModemTransmission::DATA);
+      lost.set_src(record.cycle->source);
+      lost.set_dest(record.cycle->destination);
+      lost.set_rate(statistics->rate);
+      lost.set_time(now_seconds_());
+      *lost.mutable_figures() = figures_of(*statistics);
+      on_failed_(std::move(lost));
+    }
+    return;
+  }
   v1::ModemTransmission rx;
   rx.set_type(v1::ModemTransmission::DATA);
   // $CARXD names source and destination for each frame; the cycle's

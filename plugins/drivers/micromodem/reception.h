@@ -9,7 +9,9 @@
 // The decision: a record opens on `$CARXP` (or the first sentence of a
 // packet without one), collects frames in frame order, and closes on
 // `$CACST`; a record with at least one non-empty good frame is delivered,
-// others (cycle-inits, ACK mini-packets, timeouts) only close. A new
+// others (cycle-inits, ACK mini-packets, timeouts) only close, except a
+// packet whose every frame failed, which is told as heard and lost
+// (set_on_failed) when its $CACYC named the sender. A new
 // `$CARXP` closes an unfinished record (CST=0 or a lost `$CACST`) the same
 // way. DATA for every destination is delivered (driver.h: the queues
 // filter); empty frames are skipped (blank frames, §5.3) and bad frames
@@ -56,6 +58,11 @@ class Reception {
   void on_statistics(const ::acomms::micromodem::ReceiveStatistics& statistics);  // $CACST
   // Drops the record in progress (a reboot).
   void reset() { record_.reset(); }
+  // A packet whose every frame failed its CRC, closed by its $CACST, with a
+  // $CACYC that named its source: told here (no frames; rate, src, dest
+  // from the cycle; the $CACST figures), so the event log counts a packet
+  // heard and lost (link::DriverCallbacks::on_reception_failed). Unset: dropped.
+  void set_on_failed(Deliver on_failed) { on_failed_ = std::move(on_failed); }
 
   const Counters& counters() const { return counters_; }
 
@@ -65,12 +72,14 @@ class Reception {
     std::optional<::acomms::micromodem::ReceivedData> first_frame;
     std::vector<std::string> frames;  // good, non-empty, in frame order
     bool ack_requested = false;
+    int bad_frames = 0;  // $CAMSG,BAD_CRC in this packet
   };
   Record& open();
   void close(const ::acomms::micromodem::ReceiveStatistics* statistics);
 
   std::function<double()> now_seconds_;
   Deliver deliver_;
+  Deliver on_failed_;
   std::optional<Record> record_;
   Counters counters_;
 };

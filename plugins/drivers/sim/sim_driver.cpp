@@ -281,6 +281,7 @@ void SimDriver::finish_arrival(uint64_t key) {
   } else if (physics_ ? !decodes(arrival) : uniform() < loss_probability(arrival.range_m)) {
     // decodes() counts its own "no model yet".
     if (!physics_ || arrival.judgement->modelled) ++stats_.lost_random;
+    if (physics_ && arrival.judgement->modelled) report_failed(arrival);
     spdlog::debug("sim modem {}: packet from {} lost at {:.0f} m", id_, arrival.envelope.sender,
                   arrival.range_m);
   } else {
@@ -294,11 +295,19 @@ void SimDriver::finish_arrival(uint64_t key) {
   }
 }
 
+int32_t SimDriver::curve_rate(const ModemTransmission& tx) {
+  // Frameless packets (polls, ACKs) are FSK mini-packets: rate 0's curve.
+  return tx.type() == ModemTransmission::DATA && tx.frame_size() > 0 ? tx.rate() : 0;
+}
+
+void SimDriver::set_prediction(const SimPhysics::Judgement& j, v1::ReceptionFigures* figures) {
+  figures->set_predicted_tl_db(j.tl_db);
+  figures->set_predicted_snr_db(j.predicted_snr_db);
+}
+
 bool SimDriver::decodes(Arrival& arrival) {
   const ModemTransmission& tx = arrival.envelope.transmission;
-  // Frameless packets (polls, ACKs) are FSK mini-packets: rate 0's curve.
-  const int32_t rate = tx.type() == ModemTransmission::DATA && tx.frame_size() > 0 ? tx.rate() : 0;
-  arrival.judgement = physics_->judge(arrival.envelope.sender, arrival.envelope.position, position(), rate);
+  arrival.judgement = physics_->judge(arrival.envelope.sender, arrival.envelope.position, position(), curve_rate(tx));
   if (!arrival.judgement->modelled) {
     if (stats_.lost_no_model++ == 0)
       spdlog::warn("sim modem {}: packet from {} lost: no TL grid from the model yet", id_, arrival.envelope.sender);
@@ -307,6 +316,23 @@ bool SimDriver::decodes(Arrival& arrival) {
   // One draw: survive the fixed and range losses, then decode.
   const double p = (1.0 - loss_probability(arrival.range_m)) * arrival.judgement->probability;
   return uniform() < p;
+}
+
+void SimDriver::report_failed(const Arrival& arrival) {
+  const auto& on_failed = sequence_.callbacks().on_reception_failed;
+  if (!on_failed) return;
+  const ModemTransmission& sent = arrival.envelope.transmission;
+  ModemTransmission heard;
+  heard.set_src(arrival.envelope.sender);
+  heard.set_dest(sent.dest());
+  heard.set_type(sent.type());
+  heard.set_rate(curve_rate(sent));
+  heard.set_time(util::seconds_since_epoch(arrival.interval.end));
+  // What a modem can tell of a packet it failed to decode: not its SNR,
+  // but the model still predicts one for the geometry.
+  set_prediction(*arrival.judgement, heard.mutable_figures());
+  heard.mutable_figures()->set_range_m(arrival.judgement->range_m);
+  on_failed(heard);
 }
 
 void SimDriver::note_lost(const Arrival& arrival, const char* why) {
@@ -329,6 +355,7 @@ void SimDriver::deliver(const Arrival& arrival) {
     const SimPhysics::Judgement& j = *arrival.judgement;
     v1::ReceptionFigures* figures = rx.mutable_figures();
     figures->set_snr_in_db(j.snr_db);
+    set_prediction(j, figures);
     figures->set_range_m(j.range_m);
     if (j.delay_spread_s) figures->set_delay_spread_s(*j.delay_spread_s);
     std::snprintf(quality, sizeof quality, "sim range_m=%.1f delay_s=%.4f snr_db=%.1f tl_db=%.1f", arrival.range_m,

@@ -46,7 +46,11 @@
 // depths), one draw per packet. The model runs on a TlGridSource, never on
 // the core thread: a loopback or lone node makes its own (a worker thread,
 // answers posted to its io_context); nodes on a SimChannel are given one
-// (set_tl_grid_source, before start). The node's position comes from a
+// (set_tl_grid_source, before start). Each modelled packet's figures carry
+// the model's own prediction beside the SNR the site's correction gives
+// (predicted_tl_db, predicted_snr_db), and a packet that failed its draw is
+// told to on_reception_failed, so the link can be calibrated back from the
+// event log (acommsctl link calibrate). The node's position comes from a
 // NodePositionSource when one is set (its navigation), else from the config.
 
 #include <asio/io_context.hpp>
@@ -153,6 +157,12 @@ class SimDriver final : public link::Driver {
   void hear(const SimEnvelope& envelope);
   void finish_arrival(uint64_t key);
   void deliver(const Arrival& arrival);
+  // A modelled packet that failed its draw: told to on_reception_failed
+  // with the model's prediction, so that a calibration counts it.
+  void report_failed(const Arrival& arrival);
+  // The rate whose reception curve judges `tx` (mini-packets: 0).
+  static int32_t curve_rate(const v1::ModemTransmission& tx);
+  static void set_prediction(const SimPhysics::Judgement& j, v1::ReceptionFigures* figures);
   // A packet lost to half-duplex or a collision: logged if it begins a burst.
   void note_lost(const Arrival& arrival, const char* why);
   // The sequence's Medium::send: puts a packet in the water now (DATA with

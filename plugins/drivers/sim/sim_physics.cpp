@@ -154,6 +154,7 @@ SimPhysics::Judgement SimPhysics::judge(int32_t sender, const SimPosition& from,
   j.tl_db = outcome.tl_db;
   j.snr_db = outcome.snr_db;
   j.probability = outcome.probability;
+  j.predicted_snr_db = physics_.source_level_db - outcome.tl_db - physics_.noise_level_db;
   Spread& spread = spreads_[sender];
   j.delay_spread_s = spread.delay_spread_s;
   const bool moved = spread.range_m < 0 || std::abs(spread.range_m - j.range_m) > 5 * range_step_m_ ||

@@ -47,6 +47,10 @@ class SimPhysics : public std::enable_shared_from_this<SimPhysics> {
     bool modelled = false;  // false: no grid has arrived yet
     double range_m = 0;     // horizontal
     double tl_db = 0, snr_db = 0, probability = 0;
+    // What the model alone predicts, without the site's correction:
+    // SL − TL − NL_ambient (acommsctl link calibrate compares snr_db,
+    // the "measured" SNR, with it).
+    double predicted_snr_db = 0;
     std::optional<double> delay_spread_s;
   };
   Judgement judge(int32_t sender, const SimPosition& from, const SimPosition& own, int32_t rate);

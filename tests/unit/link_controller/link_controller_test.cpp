@@ -9,6 +9,7 @@
 
 #include <fstream>
 
+#include "acomms/v1/link_figures.pb.h"
 #include "mac/silent_mac.h"
 #include "queue/memory_journal.h"
 #include "submit_now.h"
@@ -358,6 +359,98 @@ TEST_F(LinkControllerTest, SendsARoutedMessageOnlyWhileItsLinkIsTheCarrier) {
   EXPECT_EQ(modem.sent[1].dest(), 2);
   EXPECT_NE(modem.sent[1].frame(0), "") << "node 2 heard on acoustic: acoustic carries again";
   acoustic.stop();
+}
+
+}  // namespace
+}  // namespace acomms::link
+
+namespace acomms::link {
+namespace {
+
+// What acommsctl link calibrate fits: one "packet" event per packet heard
+// from another node with figures, decoded or lost, mini-packets as rate 0.
+TEST_F(LinkControllerTest, EachPacketHeardWithFiguresIsAPacketEventDecodedOrLost) {
+  auto packets = [this] {
+    std::vector<queue::QueueEvent> out;
+    for (const queue::QueueEvent& e : journal_.events()) {
+      if (e.kind == queue::QueueEventKind::kPacket) out.push_back(e);
+    }
+    return out;
+  };
+  auto figures_of = [](const queue::QueueEvent& e) {
+    v1::LinkFigures f;
+    EXPECT_TRUE(e.link_figures && f.ParseFromString(*e.link_figures));
+    return f;
+  };
+  v1::ModemTransmission data;
+  data.set_type(v1::ModemTransmission::DATA);
+  data.set_src(2);
+  data.set_dest(1);
+  data.set_rate(3);
+  data.add_frame("");
+  data.mutable_figures()->set_snr_in_db(11);
+  data.mutable_figures()->set_predicted_snr_db(15);
+  data.mutable_figures()->set_predicted_tl_db(60);
+  driver_.receive(data);
+  v1::ModemTransmission ack;  // a mini-packet, whatever rate it names
+  ack.set_type(v1::ModemTransmission::ACK);
+  ack.set_src(2);
+  ack.set_dest(1);
+  ack.set_rate(5);
+  ack.mutable_figures()->set_predicted_snr_db(14);
+  driver_.receive(ack);
+  v1::ModemTransmission lost;
+  lost.set_type(v1::ModemTransmission::DATA);
+  lost.set_src(3);
+  lost.set_dest(1);
+  lost.set_rate(1);
+  lost.mutable_figures()->set_predicted_snr_db(2);
+  driver_.callbacks_.on_reception_failed(lost);
+  v1::ModemTransmission plain = data;  // no figures: nothing to fit
+  plain.clear_figures();
+  driver_.receive(plain);
+  v1::ModemTransmission own = data;  // our own: never a link
+  own.set_src(1);
+  driver_.receive(own);
+
+  const std::vector<queue::QueueEvent> events = packets();
+  ASSERT_EQ(events.size(), 3u);
+  EXPECT_EQ(events[0].src, 2);
+  EXPECT_EQ(events[0].dest, 1);
+  const v1::LinkFigures first = figures_of(events[0]);
+  EXPECT_TRUE(first.decoded());
+  EXPECT_EQ(first.rate(), 3);
+  EXPECT_EQ(first.transmission_src(), 2);
+  EXPECT_DOUBLE_EQ(first.snr_in_db(), 11);
+  EXPECT_DOUBLE_EQ(first.predicted_snr_db(), 15);
+  EXPECT_DOUBLE_EQ(first.predicted_tl_db(), 60);
+  const v1::LinkFigures second = figures_of(events[1]);
+  EXPECT_TRUE(second.decoded());
+  EXPECT_EQ(second.rate(), 0) << "mini-packets are FSK: rate 0's curve";
+  EXPECT_EQ(events[2].src, 3);
+  const v1::LinkFigures third = figures_of(events[2]);
+  ASSERT_TRUE(third.has_decoded());
+  EXPECT_FALSE(third.decoded());
+  EXPECT_EQ(third.rate(), 1);
+  EXPECT_FALSE(third.has_snr_in_db());
+}
+
+TEST_F(LinkControllerTest, APacketWhoseEveryFrameWasBadIsLoggedLost) {
+  v1::ModemTransmission data;
+  data.set_type(v1::ModemTransmission::DATA);
+  data.set_src(2);
+  data.set_dest(1);
+  data.set_rate(1);
+  data.add_frame("");
+  data.mutable_figures()->set_frames(2);
+  data.mutable_figures()->set_bad_frames(2);
+  driver_.receive(data);
+  std::vector<queue::QueueEvent> events = journal_.events();
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, queue::QueueEventKind::kPacket);
+  v1::LinkFigures f;
+  ASSERT_TRUE(f.ParseFromString(*events[0].link_figures));
+  EXPECT_FALSE(f.decoded());
 }
 
 }  // namespace

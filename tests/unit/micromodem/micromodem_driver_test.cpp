@@ -32,10 +32,11 @@ core::Clock::time_point start_time() {
 // One node: a fake modem, the driver on it, and what the driver reported.
 struct Node {
   Node(Water& water, core::Scheduler& scheduler, int id, Generation generation, Position position,
-       std::vector<std::string> cfg = {}, int nvram_address = 0)
+       std::vector<std::string> cfg = {}, int nvram_address = 0, double frame_error_probability = 0)
       : modem(water, [&] {
           FakeModemConfig c;
           c.address = nvram_address ? nvram_address : id;
+          c.frame_error_probability = frame_error_probability;
           c.generation = generation;
           c.position = position;
           return c;
@@ -61,6 +62,7 @@ struct Node {
     callbacks.on_transmit_result = [this](const ModemTransmission& tx, bool ok, const std::string& error) {
       results.push_back({tx, ok, error});
     };
+    callbacks.on_reception_failed = [this](const ModemTransmission& tx) { failed.push_back(tx); };
     driver->start(std::move(callbacks));
   }
 
@@ -100,6 +102,7 @@ struct Node {
   size_t mark = 0;
   std::unique_ptr<MicroModemDriver> driver;
   std::vector<ModemTransmission> received;
+  std::vector<ModemTransmission> failed;  // on_reception_failed
   std::vector<Result> results;
   std::vector<std::string> frames_to_send;
   int data_requests = 0;
@@ -390,6 +393,33 @@ TEST_F(MicroModemDriverTest, TwoDriversExchangePskDataAndTheModemsAcksReachTheSe
   EXPECT_EQ(std::vector<uint32_t>(acks[0].acked_frame().begin(), acks[0].acked_frame().end()),
             (std::vector<uint32_t>{0, 1}));
   EXPECT_TRUE(b_->results.empty());
+}
+
+TEST_F(MicroModemDriverTest, APacketWhoseEveryFrameFailsIsToldAsHeardAndLostWithItsStatistics) {
+  a_ = std::make_unique<Node>(water_, scheduler_, 1, Generation::kMM2, Position{0, 0, 0});
+  b_ = std::make_unique<Node>(water_, scheduler_, 2, Generation::kMM2, Position{1500, 0, 0}, std::vector<std::string>{},
+                              0, /*frame_error_probability=*/1.0);
+  nodes_ = {a_.get(), b_.get()};
+  for (Node* node : nodes_) {
+    node->start();
+    node->modem.power_on();
+  }
+  run(8s);
+  ASSERT_TRUE(b_->driver->ready());
+  a_->frames_to_send = {std::string(64, 'a'), std::string(40, 'b')};
+  a_->driver->initiate_transmission(data_to(1, 2, 1));
+  run(20s);
+  EXPECT_TRUE(b_->received_of(ModemTransmission::DATA).empty()) << "no good frame: nothing to deliver";
+  ASSERT_EQ(b_->failed.size(), 1u);
+  const ModemTransmission& lost = b_->failed[0];
+  EXPECT_EQ(lost.src(), 1);
+  EXPECT_EQ(lost.dest(), 2);
+  EXPECT_EQ(lost.rate(), 1);
+  EXPECT_EQ(lost.frame_size(), 0);
+  ASSERT_TRUE(lost.has_figures());
+  EXPECT_EQ(lost.figures().bad_frames(), 2u);
+  EXPECT_NEAR(lost.figures().snr_in_db(), 36.5, 0.1);
+  EXPECT_TRUE(a_->failed.empty());
 }
 
 TEST_F(MicroModemDriverTest, NothingToSendSendsNoCycle) {

@@ -229,7 +229,7 @@ TEST_F(EventLogReaderTest, UnknownKindThrowsListingTheKinds) {
   } catch (const std::invalid_argument& e) {
     std::string what = e.what();
     EXPECT_NE(what.find("bogus"), std::string::npos) << what;
-    for (const char* kind : {"queued", "sent", "acked", "expired", "dropped", "retry", "received"}) {
+    for (const char* kind : {"queued", "sent", "acked", "expired", "dropped", "retry", "received", "packet"}) {
       EXPECT_NE(what.find(kind), std::string::npos) << kind << " not listed: " << what;
     }
   }
@@ -240,7 +240,7 @@ TEST_F(EventLogReaderTest, UnknownKindThrowsListingTheKinds) {
 TEST_F(EventLogReaderTest, KindNamesRoundTrip) {
   for (QueueEventKind kind : {QueueEventKind::kQueued, QueueEventKind::kSent, QueueEventKind::kAcked,
                               QueueEventKind::kExpired, QueueEventKind::kDropped, QueueEventKind::kRetry,
-                              QueueEventKind::kReceived}) {
+                              QueueEventKind::kReceived, QueueEventKind::kPacket}) {
     EXPECT_EQ(event_kind_from_string(std::string(to_string(kind))), kind) << to_string(kind);
   }
 }

@@ -166,6 +166,37 @@ TEST_F(StoredLinkFiguresTest, TheFiguresSurviveARestartAndEventsShowThemOnReceiv
   EXPECT_FALSE(page.events[1].event.link_figures.has_value());
 }
 
+TEST_F(StoredLinkFiguresTest, APacketEventKeepsItsPredictionAndOutcomeAndIsNeverReplayedAsAMessage) {
+  open();
+  v1::ModemTransmission t = psk_reception();
+  t.mutable_figures()->set_predicted_tl_db(61.5);
+  t.mutable_figures()->set_predicted_snr_db(20.5);
+  v1::LinkFigures figures = link::link_figures(t);
+  figures.set_decoded(false);
+  manager_->record_packet(2, 1, figures.SerializeAsString());
+  journal_->flush();
+  close();
+  open();
+
+  EXPECT_TRUE(replay().empty()) << "a packet is not a message: nothing to hand a subscriber";
+  EventQuery packets;
+  packets.kinds = {"packet"};
+  EventPage page = reader_->query(packets);
+  ASSERT_EQ(page.events.size(), 1u);
+  const QueueEvent& e = page.events[0].event;
+  EXPECT_EQ(e.kind, QueueEventKind::kPacket);
+  EXPECT_EQ(e.src, 2);
+  EXPECT_EQ(e.dest, 1);
+  EXPECT_EQ(e.type, "");
+  EXPECT_DOUBLE_EQ(e.time, kStart);
+  const v1::LinkFigures stored = parsed(e.link_figures);
+  EXPECT_DOUBLE_EQ(stored.predicted_tl_db(), 61.5);
+  EXPECT_DOUBLE_EQ(stored.predicted_snr_db(), 20.5);
+  EXPECT_DOUBLE_EQ(stored.snr_in_db(), 12.5);
+  ASSERT_TRUE(stored.has_decoded());
+  EXPECT_FALSE(stored.decoded());
+}
+
 TEST_F(StoredLinkFiguresTest, NoFiguresIsStoredAsNoneAndAllDefaultFiguresAsFigures) {
   open();
   ASSERT_EQ(manager_->receive(status(1), 2).size(), 1u);
