@@ -89,6 +89,13 @@ void run_events(const GlobalOptions& global, const EventsOptions& options) {
   if (!options.since.empty()) request.set_since(parse_time(options.since, now));
   if (!options.until.empty()) request.set_until(parse_time(options.until, now));
   for (const std::string& kind : options.kinds) request.add_kinds(kind);
+  // Packet events (one per packet heard, polls and ACKs included) outnumber
+  // the messages' own stories many times over: shown only when asked for.
+  if (options.kinds.empty()) {
+    for (const std::string& kind : event_kinds()) {
+      if (kind != "packet") request.add_kinds(kind);
+    }
+  }
   for (const std::string& type : options.types) request.add_types(type);
   request.set_message_id(options.message_id);
   request.set_limit(options.limit);
@@ -116,7 +123,7 @@ void add_events_command(CLI::App& app, const GlobalOptions& global) {
   events->add_option("--until", options.until, "Up to this time (default: now)")->type_name("T");
   std::string kinds;
   for (const std::string& kind : event_kinds()) kinds += (kinds.empty() ? "" : ", ") + kind;
-  events->add_option("--kind", options.kinds, "Only these kinds: " + kinds)
+  events->add_option("--kind", options.kinds, "Only these kinds: " + kinds + " (default: all but packet)")
       ->type_name("KIND")
       ->allow_extra_args(false)
       ->check(CLI::IsMember(event_kinds()));

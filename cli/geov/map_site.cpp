@@ -150,6 +150,9 @@ void MapSite::history(const HttpRequest& request, HttpResponder& responder, bool
     }
     from = std::max(from, held->first);
     to = std::min(to, held->second);
+    // No period chosen (a saved Google Earth link, "all of it"): the newest
+    // --max-period of what is held, rather than a refusal once a day has passed.
+    if (!chosen) from = std::max(from, to - options_.max_period_s);
     if (to - from > options_.max_period_s) {
       throw HttpError{400, "the period holds " + json_number(std::round((to - from) / 36) / 100) +
                                " h of positions; at most " + json_number(options_.max_period_s / 3600) +

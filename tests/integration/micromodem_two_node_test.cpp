@@ -16,6 +16,7 @@
 #include <chrono>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "micromodem_network.h"
@@ -106,6 +107,24 @@ TEST_P(MicroModemTwoNode, ACommandReachesTheVehicleWithLinkFiguresAndTheModemsAc
   const std::string how = "tx 2 rate " + std::to_string(GetParam()) + (GetParam() == 0 ? " FSK, SNR in " : " PSK, SNR in ");
   EXPECT_NE(table.out.find(how), std::string::npos) << table.out;
   EXPECT_EQ(table.out.find("snr_in_db="), std::string::npos) << "the driver's text repeats the figures:\n" << table.out;
+
+  // Packet events (one per packet heard) only when asked for: the default
+  // listing is the messages' own stories.
+  auto kinds_listed = [&](std::vector<std::string> args, const std::string& name) {
+    std::vector<std::string> all = {"--socket", net_->socket(1), "events", "--json"};
+    all.insert(all.end(), args.begin(), args.end());
+    RunResult listed = run(ACOMMSCTL_BINARY, all, (net_->dir() / name).string());
+    EXPECT_EQ(listed.exit_code, 0) << listed.err;
+    v1::EventsResponse log;
+    EXPECT_TRUE(google::protobuf::util::JsonStringToMessage(listed.out, &log).ok()) << listed.out;
+    std::multiset<std::string> kinds;
+    for (const auto& event : log.events()) kinds.insert(event.kind());
+    return kinds;
+  };
+  const auto by_default = kinds_listed({}, "events-default");
+  EXPECT_EQ(by_default.count("packet"), 0u);
+  EXPECT_EQ(by_default.count("received"), 1u);
+  EXPECT_GE(kinds_listed({"--kind", "packet"}, "events-packet").count("packet"), 1u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Rates, MicroModemTwoNode, ::testing::Values(0, 5),

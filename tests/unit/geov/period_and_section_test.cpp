@@ -86,11 +86,17 @@ TEST_F(PeriodAndSectionTest, APeriodHoldingMoreThanTheBoundIsRefusedNamingIt) {
   SiteOptions options;
   options.max_period_s = 3 * 3600;
   start(options);
-  std::string r = get(port(), "/api/history");
+  std::string r = get(port(), "/api/history?from=0");
   EXPECT_EQ(status_of(r), 400);
   EXPECT_NE(body_of(r).find("the period holds 4 h of positions; at most 3 h at once (--max-period)"), std::string::npos)
       << r;
   EXPECT_EQ(status_of(get(port(), "/kml/history.kml?from=0")), 400);
+  // No period chosen (a saved Google Earth link): the newest 3 h, not a
+  // refusal once the positions held outgrow the bound.
+  r = get(port(), "/api/history");
+  EXPECT_EQ(status_of(r), 200) << r;
+  EXPECT_EQ(body_of(r).rfind("{\"from\":1003600,\"to\":1014400,", 0), 0u) << r;
+  EXPECT_EQ(status_of(get(port(), "/kml/history.kml")), 409) << "served (no lat/lon here), not refused as too long";
   // Within the bound: served, even when the period asked for is longer
   // than the positions it holds.
   r = get(port(), "/api/history?from=" + std::to_string(int(1e6) + 3600) + "&to=" + std::to_string(int(1e6) + 100000));
