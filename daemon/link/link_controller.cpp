@@ -107,7 +107,27 @@ void LinkController::run() {
       spdlog::trace("link {} {} bytes", outgoing ? ">>" : "<<", bytes.size());
     }
   };
-  callbacks.after_receipt_durable = options_.after_receipt_durable;
+  // A gateway's custody (queue/routing.h): the ACK of what was just
+  // received goes only if every custody it took is committed (the driver
+  // asks for this right after on_receive, for the same transmission).
+  callbacks.after_receipt_durable = [this](std::function<void()> then) {
+    if (!ack_conditions_.empty()) {
+      then = [conditions = std::exchange(ack_conditions_, {}), then = std::move(then)] {
+        for (const auto& condition : conditions) {
+          if (!condition->load()) {
+            spdlog::info("link: ACK withheld: custody not taken (the previous hop keeps the message)");
+            return;
+          }
+        }
+        then();
+      };
+    }
+    if (options_.after_receipt_durable) {
+      options_.after_receipt_durable(std::move(then));
+    } else {
+      then();
+    }
+  };
   driver_.start(std::move(callbacks));
   mac_.start([this](const v1::ModemTransmission& t) {
     // The driver's data request, if any, comes within this call.
@@ -209,6 +229,7 @@ uint32_t LinkController::frames_for_slot(const v1::ModemTransmission& transmissi
 void LinkController::on_receive(const v1::ModemTransmission& transmission) {
   ACOMMS_ASSERT_CORE_THREAD();
   mac_.on_receive(transmission);
+  ack_conditions_.clear();  // they belong to the transmission they came with
   // Any packet from a node says this link reaches it (link_choice.h).
   const bool from_other = transmission.src() != own_id_ && transmission.src() != queue::kBroadcast;
   if (options_.choice != nullptr && from_other &&
@@ -242,11 +263,13 @@ void LinkController::on_receive(const v1::ModemTransmission& transmission) {
   // message's event keeps the transmission's figures, for replay.
   const std::string figures = link_figures(transmission).SerializeAsString();
   for (const std::string& frame : transmission.frame()) {
-    for (queue::ReceivedMessage& message : queues_.receive(frame, transmission.src(), figures)) {
+    for (queue::ReceivedMessage& message : queues_.receive(frame, transmission.src(), figures, options_.link_index,
+                                                                    transmission.dest())) {
       ++stats_.messages_delivered;
       deliver_(std::move(message), transmission);
     }
   }
+  ack_conditions_ = queues_.take_ack_conditions();
 }
 
 void LinkController::deliver_driver_specific(const v1::ModemTransmission& transmission) {

@@ -20,9 +20,11 @@
 // choice when it hears a node. A link can be disabled and enabled at run
 // time (set_enabled): disabled, its MAC and driver are stopped.
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <set>
 #include <tuple>
 #include <string_view>
@@ -143,6 +145,9 @@ class LinkController {
   // A poll was answered with a blank frame so that a waiting extra can
   // follow it: sent at that answer's result.
   bool extra_after_poll_answer_ = false;
+  // Custody conditions of the DATA just received (queue/routing.h),
+  // applied to its ACK.
+  std::vector<std::shared_ptr<std::atomic<bool>>> ack_conditions_;
 };
 
 }  // namespace acomms::link
