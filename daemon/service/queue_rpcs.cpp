@@ -65,6 +65,11 @@ grpc::Status AcommsService::ListQueued(grpc::ServerContext* context, const v1::L
     return out;
   });
   for (Row& row : rows) {
+    // A gateway's custody queue holds envelopes of types it may not know.
+    if (node_.codec.find_type(row.message.type()) == nullptr) {
+      *response->add_messages() = std::move(row.message);
+      continue;
+    }
     std::unique_ptr<google::protobuf::Message> message = node_.codec.new_message(row.message.type());
     if (message->ParsePartialFromString(row.payload)) row.message.set_json(dccl::message_json(*message));
     *response->add_messages() = std::move(row.message);
