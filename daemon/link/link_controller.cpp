@@ -115,7 +115,7 @@ void LinkController::run() {
       then = [conditions = std::exchange(ack_conditions_, {}), then = std::move(then)] {
         for (const auto& condition : conditions) {
           if (!condition->load()) {
-            spdlog::info("link: ACK withheld: custody not taken (the previous hop keeps the message)");
+            spdlog::debug("link: ACK withheld: custody not taken (the previous hop keeps the message)");
             return;
           }
         }

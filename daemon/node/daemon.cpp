@@ -126,7 +126,7 @@ void Daemon::start() {
   }
   api_ = std::make_unique<service::AcommsService>(
       std::move(identity), service::Node{*codec_, *queues_, *submitter_, *core_, std::move(links), *definitions_,
-                                         *events_, subscribers_, *telemetry_, *track_},
+                                         *events_, subscribers_, *telemetry_, *track_, forwarder_.get()},
       *roles_);
 
   gram_api_ = std::make_unique<service::GramService>(*gram_.pool, *gram_.environment,
@@ -159,7 +159,7 @@ void Daemon::build_routing() {
   try {
     const double ttl_s = queue::resolve_policy({}, config_.queue().defaults(), "queue.defaults").ttl_s;
     forwarder_ = std::make_unique<route::Forwarder>(config_.routing(), own_id_, std::move(links), *codec_, *queues_,
-                                                    ttl_s, [this](std::function<void()> work) {
+                                                    clock_, ttl_s, [this](std::function<void()> work) {
                                                       core_->post(std::move(work));
                                                     });
   } catch (const std::invalid_argument& e) {

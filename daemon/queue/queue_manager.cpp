@@ -151,7 +151,8 @@ void QueueManager::restore() {
     message.record = record;
     // Held in custody for another node (routed_queues.cpp): the stored
     // payload is the envelope, sent as it is.
-    if (TypeState* custody = it == by_name_.end() ? custody_state(record.type) : nullptr) {
+    const bool held_for_others = routing_ != nullptr && routing_->custody_policy(record.type).has_value();
+    if (TypeState* custody = held_for_others ? custody_state(record.type) : nullptr) {
       message.encoded = record.payload;
       std::optional<QueuedMessage> dropped;
       if (custody->queue->push(std::move(message), &dropped)) {

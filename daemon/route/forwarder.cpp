@@ -50,11 +50,13 @@ queue::RoutedForm hold() {
 }  // namespace
 
 Forwarder::Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vector<std::string> links,
-                     const dccl::Codec& codec, queue::QueueManager& queues, double custody_ttl_s, PostToCore post)
+                     const dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock,
+                     double custody_ttl_s, PostToCore post)
     : table_(config, links, own_id),
       own_id_(own_id),
       links_(std::move(links)),
       queues_(queues),
+      clock_(clock),
       custody_ttl_s_(custody_ttl_s),
       post_(std::move(post)),
       envelope_id_(config.has_envelope_id() ? config.envelope_id() : kDefaultEnvelopeId),
@@ -181,11 +183,14 @@ queue::EnvelopeOutcome Forwarder::take_custody(Envelope e, size_t used, double n
   }
   if (held() >= max_custody_) {
     ++stats_.custody_refused;
-    spdlog::warn("route: custody of message {}/{} for node {} refused: {} held (routing.max_custody); the "
+    // Once per burst: the previous hop resends every slot while it lasts.
+    if (!refusing_) spdlog::warn("route: custody of message {}/{} for node {} refused: {} held (routing.max_custody); the "
                  "previous hop keeps it",
                  e.origin, e.seq, e.destination, held());
+    refusing_ = true;
     return taken_only_if(used, std::make_shared<std::atomic<bool>>(false));
   }
+  refusing_ = false;
   ++e.hops;
   const MessageIdentity identity = e.identity();
   queue::JournalMessage record;
@@ -253,6 +258,23 @@ queue::RoutedForm Forwarder::outgoing(const queue::Queue& queue, const queue::Qu
   form.bytes = encode_envelope(e, envelope_id_);
   form.next_hop = next->node;
   return form;
+}
+
+std::string Forwarder::waiting(const queue::Queue& queue, const queue::QueuedMessage& message) const {
+  ACOMMS_ASSERT_CORE_THREAD();
+  const int32_t dest = message.record.dest;
+  if (!is_custody(queue.type()) && (dest == queue::kBroadcast || dest == own_id_)) return "";
+  if (table_.next_hop(dest, clock_.now_seconds())) return "";
+  return "no route to node " + std::to_string(dest);
+}
+
+std::string Forwarder::custody_json(const queue::Queue& queue, const queue::QueuedMessage& message) const {
+  if (!is_custody(queue.type())) return "";
+  std::optional<Envelope> e = held_envelope(message, envelope_id_);
+  if (!e) return "";
+  return "{\"origin\":" + std::to_string(e->origin) + ",\"destination\":" + std::to_string(e->destination) +
+         ",\"seq\":" + std::to_string(e->seq) + ",\"hops\":" + std::to_string(e->hops) + ",\"hop_limit\":" +
+         std::to_string(e->hop_limit) + ",\"message_bytes\":" + std::to_string(e->payload.size()) + "}";
 }
 
 std::optional<queue::QueuePolicy> Forwarder::custody_policy(const std::string& type) const {

@@ -51,6 +51,7 @@
 #include <vector>
 
 #include "acomms/v1/config.pb.h"
+#include "core/clock.h"
 #include "dccl/codec.h"
 #include "queue/queue_manager.h"
 #include "queue/routing.h"
@@ -63,7 +64,8 @@ namespace acomms::route {
 inline constexpr const char* kCustodyQueuePrefix = "acomms.route.Custody.v";
 
 struct ForwarderStats {
-  uint64_t custody_taken = 0;      // envelopes journaled for another node
+  uint64_t custody_taken = 0;      // envelopes for another node handed to the journal
+                                   // (a failed commit is logged, not acknowledged)
   uint64_t custody_refused = 0;    // ... refused: custody full (no ACK)
   uint64_t custody_copies = 0;     // ... already held: acknowledged, not stored again
   uint64_t delivered = 0;          // envelopes for this node passed to the receive side
@@ -85,10 +87,19 @@ class Forwarder final : public queue::Routing {
   // envelope's. `queues` and `codec` must outlive the forwarder; call
   // queues.set_routing(this) before queues.restore().
   Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vector<std::string> links,
-            const dccl::Codec& codec, queue::QueueManager& queues, double custody_ttl_s, PostToCore post);
+            const dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock, double custody_ttl_s,
+            PostToCore post);
 
   const RouteTable& routes() const { return table_; }
   RouteTable& routes() { return table_; }
+  // Why `message`, queued in `queue`, cannot go now ("no route to node
+  // 5"), or "" when it may (queue ls). Core thread.
+  std::string waiting(const queue::Queue& queue, const queue::QueuedMessage& message) const;
+  // A custody message's envelope head as JSON ({"origin":1,...}), or ""
+  // for a message of a DCCL type (queue ls).
+  std::string custody_json(const queue::Queue& queue, const queue::QueuedMessage& message) const;
+  // Every route now (RouteTable::list at the clock's now).
+  std::vector<RouteEntry> list_routes() const { return table_.list(clock_.now_seconds()); }
   const ForwarderStats& stats() const { return stats_; }
   // Messages held for others now: in custody queues or being journaled.
   size_t held() const;
@@ -113,12 +124,14 @@ class Forwarder final : public queue::Routing {
   int32_t own_id_;
   std::vector<std::string> links_;
   queue::QueueManager& queues_;
+  const core::Clock& clock_;
   double custody_ttl_s_;
   PostToCore post_;
   uint32_t envelope_id_;
   uint32_t hop_limit_;
   uint32_t max_custody_;
   bool unwrapping_ = false;         // receiving an envelope's payload now
+  bool refusing_ = false;           // custody refused since the last taken (logged once)
   std::set<MessageIdentity> pending_;            // custody being journaled
   std::map<MessageIdentity, double> delivered_;  // identity -> forget after (clock s)
   ForwarderStats stats_;

@@ -61,6 +61,30 @@ constexpr const char* kCommandQueues =
     R"(type { type: "net.Status" roles { source_field: "src" destination_field: "dest" } }
        type { type: "net.Command" roles { source_field: "src" destination_field: "dest" } })";
 
+// A journal whose appends can be made to fail (a full disk), the rest
+// kept in memory.
+class FailingJournal final : public queue::MessageJournal {
+ public:
+  using MessageJournal::append;
+  void append(queue::JournalMessage message, Appended appended) override {
+    if (fail_appends) return appended(0, std::make_exception_ptr(std::runtime_error("disk full")));
+    inner.append(std::move(message), std::move(appended));
+  }
+  void record(const queue::QueueEvent& event) override { inner.record(event); }
+  std::vector<queue::JournalMessage> load() override { return inner.load(); }
+  std::vector<queue::QueueEvent> received_since(double since) override { return inner.received_since(since); }
+  std::vector<queue::QueueEvent> authenticated_since(double since) override {
+    return inner.authenticated_since(since);
+  }
+  void flush() override {}
+  int64_t last_received_seq() override { return inner.last_received_seq(); }
+  void when_committed(Committed committed) override { committed(nullptr); }
+  uint64_t events_not_stored() const override { return 0; }
+
+  bool fail_appends = false;
+  queue::MemoryJournal inner;
+};
+
 struct LinkSpec {
   std::string name;
   std::shared_ptr<drivers::SimChannel> channel;
@@ -72,7 +96,7 @@ struct LinkSpec {
 struct GatewayNode {
   GatewayNode(int32_t id, const std::vector<std::string>& protos, const std::string& queue_text,
               const std::string& routing_text, const std::vector<LinkSpec>& specs,
-              core::SimulatedScheduler& scheduler, queue::MemoryJournal& journal) {
+              core::SimulatedScheduler& scheduler, queue::MessageJournal& journal) {
     for (const std::string& proto : protos) codec.load(proto);
     v1::QueueConfig queue_config;
     EXPECT_TRUE(google::protobuf::TextFormat::ParseFromString(queue_text, &queue_config));
@@ -86,7 +110,7 @@ struct GatewayNode {
       configs.emplace_back().set_name(spec.name);
     }
     // The journal here completes at once, on the core: nothing to post.
-    forwarder = std::make_unique<route::Forwarder>(routing, id, names, codec, *queues, 1800,
+    forwarder = std::make_unique<route::Forwarder>(routing, id, names, codec, *queues, scheduler.clock(), 1800,
                                                    [](std::function<void()> work) { work(); });
     queues->set_routing(forwarder.get());
     queues->restore();
@@ -173,6 +197,12 @@ class GatewayNetwork : public ::testing::Test {
         std::vector<LinkSpec>{{"sat", sat_, kSatCycle}, {"acoustic", acoustic_, kAcousticCycle}}, scheduler_,
         buoy_journal_);
   }
+  void build_buoy_on(const std::string& routing, queue::MessageJournal& journal) {
+    buoy_ = std::make_unique<GatewayNode>(
+        2, std::vector{status_proto()}, kQueues, routing,
+        std::vector<LinkSpec>{{"sat", sat_, kSatCycle}, {"acoustic", acoustic_, kAcousticCycle}}, scheduler_,
+        journal);
+  }
   void build_vehicle() {
     vehicle_ = std::make_unique<GatewayNode>(3, std::vector{status_proto(), command_proto()}, kCommandQueues, "",
                                              std::vector<LinkSpec>{{"acoustic", acoustic_, kAcousticCycle}},
@@ -228,6 +258,28 @@ TEST_F(GatewayNetwork, ACommandReachesAVehicleTheShoreCannotHearOnceThroughTheBu
   auto back = vehicle_->forwarder->routes().next_hop(1, scheduler_.clock().now_seconds());
   ASSERT_TRUE(back);
   EXPECT_EQ(back->node, 2);
+}
+
+TEST_F(GatewayNetwork, ANeighbourGetsPlainDcclAndAMessageWithNoRouteWaits) {
+  build_three();
+  shore_->start();
+  buoy_->start();
+  vehicle_->start();
+  scheduler_.run_for(60s);
+  vehicle_->submit("net.Status", "src: 3 dest: 2 battery: 80");
+  const std::string sent = vehicle_->queues->find_queue("net.Status")->messages().front().encoded;
+  shore_->submit("net.Command", "src: 1 dest: 5 code: 1");  // node 5: no route
+  scheduler_.run_for(300s);
+  // The buoy is the vehicle's neighbour: the status went as plain DCCL,
+  // no envelope.
+  ASSERT_EQ(buoy_->received.size(), 1u);
+  EXPECT_EQ(buoy_->received.front().encoded, sent);
+  EXPECT_EQ(buoy_->forwarder->stats().delivered, 0u);
+  // Node 5 has no route: the command waits on the shore, unsent.
+  const queue::Queue& commands = *shore_->queues->find_queue("net.Command");
+  ASSERT_EQ(commands.size(), 1u);
+  EXPECT_EQ(shore_->queues->stats("net.Command").sent, 0u);
+  EXPECT_EQ(shore_->forwarder->waiting(commands, commands.messages().front()), "no route to node 5");
 }
 
 TEST_F(GatewayNetwork, AMessageArrivingTwiceByTwoPathsIsDeliveredOnce) {
@@ -292,22 +344,53 @@ TEST_F(GatewayNetwork, AFullBuoyRefusesCustodyAndTheShoreKeepsTheMessage) {
   EXPECT_EQ(buoy_->custody_held(), 0u);
 }
 
+TEST_F(GatewayNetwork, ABuoyThatCannotStoreTheMessageDoesNotAcknowledgeIt) {
+  FailingJournal failing;
+  failing.fail_appends = true;
+  build_shore(R"(route { dest: 3 next_hop: 2 link: "sat" })");
+  build_buoy_on("", failing);
+  build_vehicle();
+  shore_->start();
+  buoy_->start();
+  vehicle_->start();
+  scheduler_.run_for(60s);
+  shore_->submit("net.Command", "src: 1 dest: 3 code: 9");
+  scheduler_.run_for(300s);
+  // Tried, not stored, not acknowledged: the shore keeps it.
+  EXPECT_GT(buoy_->forwarder->stats().custody_taken, 0u);
+  EXPECT_EQ(buoy_->custody_held(), 0u);
+  EXPECT_EQ(commands_received(*vehicle_), 0u);
+  EXPECT_EQ(shore_->queues->find_queue("net.Command")->size(), 1u);
+  // The disk has room again: the next resend goes through, once.
+  failing.fail_appends = false;
+  scheduler_.run_for(300s);
+  EXPECT_EQ(commands_received(*vehicle_), 1u);
+  EXPECT_EQ(shore_->queues->find_queue("net.Command")->size(), 0u);
+}
+
 TEST_F(GatewayNetwork, ABuoyRestartedWhileHoldingAMessageDeliversItAfterwards) {
   build_three();
   shore_->start();
   buoy_->start();
   shore_->submit("net.Command", "src: 1 dest: 3 code: 77");
+  shore_->submit("net.Command", "src: 1 dest: 3 code: 78");
   scheduler_.run_for(120s);
-  ASSERT_EQ(buoy_->custody_held(), 1u);
+  ASSERT_EQ(buoy_->custody_held(), 2u);
   ASSERT_EQ(shore_->queues->find_queue("net.Command")->size(), 0u);  // custody passed
   // The buoy stops and comes back from its journal.
   buoy_.reset();
   build_buoy("");
-  EXPECT_EQ(buoy_->custody_held(), 1u);
+  EXPECT_EQ(buoy_->custody_held(), 2u);
+  // What `queue ls` shows of them: the envelope's head, one hop taken.
+  const queue::Queue* custody = buoy_->queues->find_queue("acomms.route.Custody.v10");
+  ASSERT_NE(custody, nullptr);
+  const std::string json = buoy_->forwarder->custody_json(*custody, custody->messages().front());
+  EXPECT_NE(json.find(R"("origin":1,"destination":3,)"), std::string::npos) << json;
+  EXPECT_NE(json.find(R"("hops":2,"hop_limit":8)"), std::string::npos) << json;
   buoy_->start();
   vehicle_->start();
   scheduler_.run_for(300s);
-  EXPECT_EQ(commands_received(*vehicle_), 1u);
+  EXPECT_EQ(commands_received(*vehicle_), 2u);
   EXPECT_EQ(buoy_->custody_held(), 0u);
   EXPECT_EQ(buoy_journal_.stored(), 0u);
 }
