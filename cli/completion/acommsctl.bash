@@ -20,7 +20,7 @@ _acommsctl() {
   for ((i = 1; i < COMP_CWORD; i++)); do
     word="${COMP_WORDS[i]}"
     case "${path:+$path }$word" in
-      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link enable"|"link disable"|"link raw"|"link ping"|"link lbl"|"link mini"|"link cycle"|"events"|"nav"|"track"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"sim depth-adaptation"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"gram depth"|"gram env"|"gram env show"|"gram env update"|"geov"|"geov serve"|"completion") path="${path:+$path }$word" ;;
+      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link enable"|"link disable"|"link raw"|"link ping"|"link lbl"|"link mini"|"link cycle"|"route"|"route ls"|"events"|"nav"|"track"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"sim depth-adaptation"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"gram depth"|"gram env"|"gram env show"|"gram env update"|"geov"|"geov serve"|"completion") path="${path:+$path }$word" ;;
     esac
   done
   case "$path" in
@@ -32,7 +32,7 @@ _acommsctl() {
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "status defs send sub queue link events nav track dccl sim gram geov completion --help -h --socket -s --timeout --json --ca --cert --key --insecure --version" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "status defs send sub queue link route events nav track dccl sim gram geov completion --help -h --socket -s --timeout --json --ca --cert --key --insecure --version" -- "$cur")) ;;
     "status")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -215,6 +215,24 @@ _acommsctl() {
         --timeout) COMPREPLY=(); return ;;
       esac
       COMPREPLY=($(compgen -W "--help -h --json --socket -s --timeout --ca --cert --key --insecure" -- "$cur")) ;;
+    "route")
+      case "$prev" in
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "ls --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "route ls")
+      case "$prev" in
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "events")
       case "$prev" in
         --kind) COMPREPLY=($(compgen -W "queued sent acked expired dropped retry received" -- "$cur")); return ;;
