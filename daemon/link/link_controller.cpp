@@ -110,24 +110,24 @@ void LinkController::run() {
   // A gateway's custody (queue/routing.h): the ACK of what was just
   // received goes only if every custody it took is committed (the driver
   // asks for this right after on_receive, for the same transmission).
-  callbacks.after_receipt_durable = [this](std::function<void()> then) {
-    if (!ack_conditions_.empty()) {
-      then = [conditions = std::exchange(ack_conditions_, {}), then = std::move(then)] {
-        for (const auto& condition : conditions) {
-          if (!condition->load()) {
-            spdlog::debug("link: ACK withheld: custody not taken (the previous hop keeps the message)");
-            return;
+  // Without the hook the driver acknowledges at once, custody or not: the
+  // daemon always gives one.
+  if (options_.after_receipt_durable) {
+    callbacks.after_receipt_durable = [this](std::function<void()> then) {
+      if (!ack_conditions_.empty()) {
+        then = [conditions = std::exchange(ack_conditions_, {}), then = std::move(then)] {
+          for (const auto& condition : conditions) {
+            if (!condition->load()) {
+              spdlog::debug("link: ACK withheld: custody not taken (the previous hop keeps the message)");
+              return;
+            }
           }
-        }
-        then();
-      };
-    }
-    if (options_.after_receipt_durable) {
+          then();
+        };
+      }
       options_.after_receipt_durable(std::move(then));
-    } else {
-      then();
-    }
-  };
+    };
+  }
   driver_.start(std::move(callbacks));
   mac_.start([this](const v1::ModemTransmission& t) {
     // The driver's data request, if any, comes within this call.

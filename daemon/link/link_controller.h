@@ -63,7 +63,9 @@ struct LinkOptions {
   // (null: checked when the slot comes).
   core::Scheduler* scheduler = nullptr;
   // Given to the driver (DriverCallbacks::after_receipt_durable): software
-  // ACKs wait until the queues' received events are committed. Null: at once.
+  // ACKs wait until the queues' received events are committed, and, on a
+  // gateway, only go if the custody they imply was taken (queue/routing.h).
+  // Null: at once, custody or not.
   std::function<void(std::function<void()> then)> after_receipt_durable;
   // A node with several links: the choice of link they share (outliving the
   // controller) and this link's index in it; also the queues' link index

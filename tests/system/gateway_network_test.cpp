@@ -130,6 +130,8 @@ struct GatewayNode {
       options.scheduler = &scheduler;
       options.choice = choice.get();
       options.link_index = static_cast<int>(i);
+      // As the daemon: ACKs wait for the store (here at once) and for custody.
+      options.after_receipt_durable = [](std::function<void()> then) { then(); };
       l.controller = std::make_unique<link::LinkController>(
           id, *queues, *l.mac, *l.driver,
           [this](queue::ReceivedMessage m, const v1::ModemTransmission&) {
