@@ -19,6 +19,7 @@
 #include "gram_command.h"
 #include "link_command.h"
 #include "queue_command.h"
+#include "route_command.h"
 #include "rpc_error.h"
 #include "send_command.h"
 #include "sim_command.h"
@@ -38,6 +39,7 @@ void add_commands(CLI::App& app, const acomms::cli::GlobalOptions& options) {
   add_sub_command(app, options);
   add_queue_command(app, options);
   add_link_command(app, options);
+  add_route_command(app, options);
   add_events_command(app, options);
   add_nav_command(app, options);
   add_track_command(app, options);

@@ -40,7 +40,8 @@ void run_ls(const GlobalOptions& global, const QueueOptions& options) {
     std::string expires = m.expires_at() > 0 ? std::to_string(static_cast<long long>(m.expires_at() - now)) + "s" : "-";
     std::printf("%-8lld %-28s %-8s %-25s %9s %5u %-9s %s\n", static_cast<long long>(m.message_id()), m.type().c_str(),
                 route_text(m.src(), m.dest()).c_str(), utc_text(m.submitted_at()).c_str(), expires.c_str(),
-                m.encoded_bytes(), m.in_flight() ? "in-flight" : "queued", m.json().c_str());
+                m.encoded_bytes(), m.in_flight() ? "in-flight" : "queued",
+                m.waiting().empty() ? m.json().c_str() : ("(waits: " + m.waiting() + ") " + m.json()).c_str());
   }
   if (response.truncated()) std::printf("(more messages are queued; raise --limit to see them)\n");
 }

@@ -107,7 +107,27 @@ void LinkController::run() {
       spdlog::trace("link {} {} bytes", outgoing ? ">>" : "<<", bytes.size());
     }
   };
-  callbacks.after_receipt_durable = options_.after_receipt_durable;
+  // A gateway's custody (queue/routing.h): the ACK of what was just
+  // received goes only if every custody it took is committed (the driver
+  // asks for this right after on_receive, for the same transmission).
+  // Without the hook the driver acknowledges at once, custody or not: the
+  // daemon always gives one.
+  if (options_.after_receipt_durable) {
+    callbacks.after_receipt_durable = [this](std::function<void()> then) {
+      if (!ack_conditions_.empty()) {
+        then = [conditions = std::exchange(ack_conditions_, {}), then = std::move(then)] {
+          for (const auto& condition : conditions) {
+            if (!condition->load()) {
+              spdlog::debug("link: ACK withheld: custody not taken (the previous hop keeps the message)");
+              return;
+            }
+          }
+          then();
+        };
+      }
+      options_.after_receipt_durable(std::move(then));
+    };
+  }
   callbacks.on_reception_failed = [this](const v1::ModemTransmission& t) { record_packet(t, false); };
   driver_.start(std::move(callbacks));
   mac_.start([this](const v1::ModemTransmission& t) {
@@ -210,6 +230,7 @@ uint32_t LinkController::frames_for_slot(const v1::ModemTransmission& transmissi
 void LinkController::on_receive(const v1::ModemTransmission& transmission) {
   ACOMMS_ASSERT_CORE_THREAD();
   mac_.on_receive(transmission);
+  ack_conditions_.clear();  // they belong to the transmission they came with
   if (transmission.has_figures()) {
     // Frameless packets (polls, ACKs) are mini-packets, FSK whatever rate
     // field they carry: rate 0's reception curve judges them.
@@ -251,11 +272,13 @@ void LinkController::on_receive(const v1::ModemTransmission& transmission) {
   // message's event keeps the transmission's figures, for replay.
   const std::string figures = link_figures(transmission).SerializeAsString();
   for (const std::string& frame : transmission.frame()) {
-    for (queue::ReceivedMessage& message : queues_.receive(frame, transmission.src(), figures)) {
+    for (queue::ReceivedMessage& message : queues_.receive(frame, transmission.src(), figures, options_.link_index,
+                                                                    transmission.dest())) {
       ++stats_.messages_delivered;
       deliver_(std::move(message), transmission);
     }
   }
+  ack_conditions_ = queues_.take_ack_conditions();
 }
 
 void LinkController::record_packet(const v1::ModemTransmission& transmission, bool decoded) {

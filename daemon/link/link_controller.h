@@ -20,9 +20,11 @@
 // choice when it hears a node. A link can be disabled and enabled at run
 // time (set_enabled): disabled, its MAC and driver are stopped.
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <set>
 #include <tuple>
 #include <string_view>
@@ -61,7 +63,9 @@ struct LinkOptions {
   // (null: checked when the slot comes).
   core::Scheduler* scheduler = nullptr;
   // Given to the driver (DriverCallbacks::after_receipt_durable): software
-  // ACKs wait until the queues' received events are committed. Null: at once.
+  // ACKs wait until the queues' received events are committed, and, on a
+  // gateway, only go if the custody they imply was taken (queue/routing.h).
+  // Null: at once, custody or not.
   std::function<void(std::function<void()> then)> after_receipt_durable;
   // A node with several links: the choice of link they share (outliving the
   // controller) and this link's index in it; also the queues' link index
@@ -147,6 +151,9 @@ class LinkController {
   // A poll was answered with a blank frame so that a waiting extra can
   // follow it: sent at that answer's result.
   bool extra_after_poll_answer_ = false;
+  // Custody conditions of the DATA just received (queue/routing.h),
+  // applied to its ACK.
+  std::vector<std::shared_ptr<std::atomic<bool>>> ack_conditions_;
 };
 
 }  // namespace acomms::link

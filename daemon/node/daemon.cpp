@@ -77,6 +77,8 @@ void Daemon::start() {
     throw std::runtime_error(std::string("queue config: ") + e.what());
   }
   authenticate_queues(config_.auth(), *queues_);
+  // Before the queues restore: custody messages come back into their queues.
+  build_routing();
   queues_->restore();
   definitions_ = std::make_unique<DefinitionLoader>(
       *codec_, *queues_, *writer_, (std::filesystem::path(config_.data_dir()) / "definitions").string());
@@ -124,7 +126,7 @@ void Daemon::start() {
   }
   api_ = std::make_unique<service::AcommsService>(
       std::move(identity), service::Node{*codec_, *queues_, *submitter_, *core_, std::move(links), *definitions_,
-                                         *events_, subscribers_, *telemetry_, *track_},
+                                         *events_, subscribers_, *telemetry_, *track_, forwarder_.get()},
       *roles_);
 
   gram_api_ = std::make_unique<service::GramService>(*gram_.pool, *gram_.environment,
@@ -146,6 +148,24 @@ void Daemon::reload_tls() {
 
 void Daemon::reload_keyring() {
   if (authenticator_) node::reload_keyring(config_.auth(), *authenticator_);
+}
+
+// A gateway (config `routing`, route/forwarder.h): custody commits are
+// posted to the core, which runs by the time anything is received.
+void Daemon::build_routing() {
+  if (!config_.has_routing()) return;
+  std::vector<std::string> links;
+  for (const v1::LinkConfig& link : core::node_links(config_)) links.push_back(link.name());
+  try {
+    const double ttl_s = queue::resolve_policy({}, config_.queue().defaults(), "queue.defaults").ttl_s;
+    forwarder_ = std::make_unique<route::Forwarder>(config_.routing(), own_id_, std::move(links), *codec_, *queues_,
+                                                    clock_, ttl_s, [this](std::function<void()> work) {
+                                                      core_->post(std::move(work));
+                                                    });
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(std::string("routing config: ") + e.what());
+  }
+  queues_->set_routing(forwarder_.get());
 }
 
 // Every link (node/node_link.h) and the choice of link they share.
@@ -290,6 +310,7 @@ void Daemon::stop() {
   submitter_.reset();
   definitions_.reset();
   queues_.reset();
+  forwarder_.reset();  // after the queues, which call it
   // Every event recorded so far reaches the disk before the store closes.
   if (writer_) {
     writer_->stop();

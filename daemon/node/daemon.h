@@ -29,6 +29,7 @@
 #include "queue/event_log_retention.h"
 #include "queue/sqlite_journal.h"
 #include "queue/submitter.h"
+#include "route/forwarder.h"
 #include "store/group_commit_writer.h"
 #include "service/gram_service.h"
 #include "service/grpc_server.h"
@@ -64,6 +65,7 @@ class Daemon {
   void start();
   void schedule_expiry();
   void build_links();
+  void build_routing();
   void schedule_depth_check();
   void build_telemetry(const telemetry::StoredStreams& stored);
 
@@ -80,6 +82,8 @@ class Daemon {
   // Owned by the core thread once it runs.
   std::unique_ptr<queue::QueueManager> queues_;
   std::unique_ptr<DefinitionLoader> definitions_;
+  // The gateway (config `routing`); null without. The queues call it.
+  std::unique_ptr<route::Forwarder> forwarder_;
   service::SubscriberHub subscribers_;
   std::unique_ptr<core::EventLoop> core_;
   // Submit's way into the queues, through the core thread.

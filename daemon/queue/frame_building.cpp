@@ -65,8 +65,14 @@ QueueManager::TypeState* QueueManager::contest(std::vector<Contender>& field, do
   for (auto it = field.begin(); it != field.end();) {
     Queue& queue = *it->state->queue;
     const QueuedMessage* next = queue.next_eligible();
-    bool takes_part = next != nullptr && !queue.in_blackout(now) && next->encoded.size() <= room &&
-                      (dest == kAnyDestination || next->record.dest == dest || next->record.dest == kBroadcast);
+    // With routing (queue/routing.h) the message may go wrapped for a next
+    // hop, or wait for a route; without, its form is itself.
+    RoutedForm form;
+    if (next != nullptr) form = routed_form(queue, *next, request, now);
+    const size_t size = form.kind == RoutedForm::Kind::kWrapped ? form.bytes.size() : (next ? next->encoded.size() : 0);
+    const int32_t to = form.kind == RoutedForm::Kind::kWrapped ? form.next_hop : (next ? next->record.dest : 0);
+    bool takes_part = next != nullptr && form.kind != RoutedForm::Kind::kHold && !queue.in_blackout(now) &&
+                      size <= room && (dest == kAnyDestination || to == dest || to == kBroadcast);
     // The link's cost is held against the type's standing before this
     // request (priority(now) at its start), not its P after winning a
     // place: a type worth the link's price fills the transmission.
@@ -79,6 +85,7 @@ QueueManager::TypeState* QueueManager::contest(std::vector<Contender>& field, do
     }
     // The winner's standing after it sends: P = 0, sent now. Re-rank it.
     TypeState* winner = it->state;
+    winner_form_ = std::move(form);
     Contender after{0.0, now, it->dccl_id, winner};
     field.erase(it);
     field.insert(std::upper_bound(field.begin(), field.end(), after), after);
@@ -108,11 +115,12 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
     while (TypeState* winner = contest(field, now, request.max_frame_bytes - frame.bytes.size(), dest, request)) {
       Queue& queue = *winner->queue;
       const QueuedMessage& next = *queue.next_eligible();
-      if (dest == kAnyDestination) dest = next.record.dest;
+      const bool wrapped = winner_form_.kind == RoutedForm::Kind::kWrapped;
+      if (dest == kAnyDestination) dest = wrapped ? winner_form_.next_hop : next.record.dest;
       // An ack needs a single addressee, a link that carries acks, and a
       // type that wants them; otherwise sending is the end of the message.
       bool awaits_ack = request.ack_requested && dest != kBroadcast && queue.policy().ack;
-      frame.bytes += next.encoded;
+      frame.bytes += wrapped ? winner_form_.bytes : next.encoded;
       frame.message_ids.push_back(next.record.id);
       frame.ack_requested = frame.ack_requested || awaits_ack;
       emit(*winner, now, {.kind = QueueEventKind::kSent, .message = next.record, .frame_id = frame.frame_id,

@@ -22,14 +22,27 @@
 namespace acomms::queue {
 
 std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32_t transmission_src,
-                                                   std::optional<std::string_view> link_figures) {
+                                                   std::optional<std::string_view> link_figures, int link,
+                                                   int32_t transmission_dest) {
   ACOMMS_ASSERT_CORE_THREAD();
   double now = clock_.now_seconds();
   std::vector<ReceivedMessage> out;
+  // Any frame from a node (an empty one too) says this link reaches it.
+  if (routing_ != nullptr) routing_->heard(link, transmission_src, now);
   size_t offset = 0;
   while (offset < frame.size()) {
     std::string_view rest = frame.substr(offset);
     try {
+      // A routing envelope (queue/routing.h): routing reads it, this
+      // node never decodes what it carries for others.
+      if (routing_ != nullptr && codec_.id_of(rest) == static_cast<int>(routing_->envelope_id())) {
+        EnvelopeOutcome outcome = routing_->on_envelope(rest, transmission_src, transmission_dest, link, link_figures, now);
+        if (outcome.used == 0) throw dccl::decode_error("malformed routing envelope");
+        if (outcome.ack_only_if) ack_conditions_.push_back(std::move(outcome.ack_only_if));
+        for (ReceivedMessage& m : outcome.delivered) out.push_back(std::move(m));
+        offset += outcome.used;
+        continue;
+      }
       const dccl::TypeInfo* info = codec_.find_id(codec_.id_of(rest));
       if (info == nullptr) throw dccl::decode_error("unknown DCCL id " + std::to_string(codec_.id_of(rest)));
       size_t used = 0;

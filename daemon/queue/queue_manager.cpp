@@ -162,6 +162,20 @@ void QueueManager::restore() {
     auto it = by_name_.find(record.type);
     QueuedMessage message;
     message.record = record;
+    // Held in custody for another node (routed_queues.cpp): the stored
+    // payload is the envelope, sent as it is.
+    const bool held_for_others = routing_ != nullptr && routing_->custody_policy(record.type).has_value();
+    if (TypeState* custody = held_for_others ? custody_state(record.type) : nullptr) {
+      message.encoded = record.payload;
+      std::optional<QueuedMessage> dropped;
+      if (custody->queue->push(std::move(message), &dropped)) {
+        ++restored;
+      } else {
+        emit(*custody, now, {.kind = QueueEventKind::kDropped, .message = record,
+                             .detail = "custody queue full at restore", .removes_message = true});
+      }
+      continue;
+    }
     if (it == by_name_.end() && !codec_.refusal(record.type).empty()) {
       // The type's definition still loads but this codec refuses the type
       // (one the reference DCCL refuses, or one using dynamic_conditions):

@@ -43,6 +43,7 @@
 #include "queue/receive_filter.h"
 #include "queue/received_message.h"
 #include "queue/roles.h"
+#include "queue/routing.h"
 
 namespace acomms::queue {
 
@@ -121,8 +122,33 @@ class QueueManager {
   // acomms.v1.LinkFigures of the transmission that carried the frame) is
   // logged with each message's received event, so a replay can give it
   // back; nullopt: the link gave none.
+  // `link` (the index of the link that heard it, DataRequest::link) and
+  // `transmission_dest` (whom the transmission was for) are for routing
+  // (queue/routing.h) only.
   std::vector<ReceivedMessage> receive(std::string_view frame, int32_t transmission_src,
-                                       std::optional<std::string_view> link_figures = std::nullopt);
+                                       std::optional<std::string_view> link_figures = std::nullopt, int link = 0,
+                                       int32_t transmission_dest = kAnyDestination);
+
+  // Gateways (queue/routing.h, README "Gateways"): routing decides how
+  // chosen messages go out and what received envelopes become. Set once,
+  // before restore(); null (the default): no routing, frames unchanged.
+  // `routing` must outlive the manager. Defined in routed_queues.cpp, as
+  // are the custody calls below.
+  void set_routing(Routing* routing) { routing_ = routing; }
+  // Custody, any thread: stores `record` (type: a custody queue's name,
+  // Routing::custody_policy; payload: the envelope's bytes) with its
+  // "queued" event; `appended` runs once it is durable (or failed), on the
+  // journal's thread, as for a Submit.
+  void journal_custody(JournalMessage record, MessageJournal::Appended appended);
+  // Core thread: puts a journaled custody message (encoded = payload) in its
+  // queue, made on demand. False when no custody queue has that name or the
+  // queue is full and refuses it (dropped, with an event).
+  bool accept_custody(QueuedMessage message);
+  // Core thread: the ACK conditions received envelopes set since the last
+  // call (EnvelopeOutcome::ack_only_if): the link's ACK of the transmission
+  // just received goes only if all are still true once its receipts are
+  // durable.
+  std::vector<std::shared_ptr<std::atomic<bool>>> take_ack_conditions();
 
   // Logs a "packet" event (QueueEventKind::kPacket): one packet heard from
   // `src`, with its serialized acomms.v1.LinkFigures. Core thread only.
@@ -207,6 +233,13 @@ class QueueManager {
   // The tag, stamp and replay checks of one received message of an
   // authenticated type (its DCCL bytes and trailer): its stamp, or nullopt
   // when refused (counted and logged by the guard).
+  // A custody queue's state by name, made when routing names a policy for
+  // it; null otherwise (routed_queues.cpp).
+  TypeState* custody_state(const std::string& type);
+  // Routing's form of `queue`'s next message for `request` (kPlain without
+  // routing).
+  RoutedForm routed_form(const Queue& queue, const QueuedMessage& next, const DataRequest& request, double now);
+
   std::optional<dccl::AuthStamp> admit_authenticated(const std::string& type, std::string_view message,
                                                      int32_t transmission_src, double now);
 
@@ -264,6 +297,13 @@ class QueueManager {
   ReceiveFilter receive_filter_;  // core thread
   AuthGuard auth_guard_;          // core thread (its windows are fixed before any Submit)
   int64_t last_received_seq_ = 0;
+  // Gateways (routed_queues.cpp): null without routing.
+  Routing* routing_ = nullptr;
+  // Custody queues sort after every DCCL id (last in a priority tie).
+  int next_custody_key_ = 1 << 20;
+  // The form of the message the last contest() chose (build_frames sends it).
+  RoutedForm winner_form_;
+  std::vector<std::shared_ptr<std::atomic<bool>>> ack_conditions_;
 };
 
 }  // namespace acomms::queue

@@ -26,6 +26,10 @@
 #include "telemetry/telemetry_node.h"
 #include "telemetry/track_reader.h"
 
+namespace acomms::route {
+class Forwarder;  // route/forwarder.h (ListRoutes: route_rpcs.cpp)
+}
+
 namespace acomms::service {
 
 // What this daemon is and runs with, fixed at start: what GetStatus reports
@@ -68,6 +72,8 @@ struct Node {
   // Position telemetry (core thread) and the received tracks (any thread).
   telemetry::TelemetryNode& telemetry;
   telemetry::TrackReader& track;
+  // The gateway (config `routing`, core thread); null without.
+  route::Forwarder* forwarder = nullptr;
 };
 
 // Submit is a callback (reactor) method and the rest are synchronous: a
@@ -98,6 +104,7 @@ class AcommsService final : public v1::Acomms::WithCallbackMethod_Submit<v1::Aco
   grpc::Status QueueStats(grpc::ServerContext*, const v1::QueueStatsRequest*, v1::QueueStatsResponse*) override;
 
   grpc::Status LinkStatus(grpc::ServerContext*, const v1::LinkStatusRequest*, v1::LinkStatusResponse*) override;
+  grpc::Status ListRoutes(grpc::ServerContext*, const v1::ListRoutesRequest*, v1::ListRoutesResponse*) override;
   grpc::Status SetCycle(grpc::ServerContext*, const v1::SetCycleRequest*, v1::SetCycleResponse*) override;
   grpc::Status SetLinkEnabled(grpc::ServerContext*, const v1::SetLinkEnabledRequest*,
                               v1::SetLinkEnabledResponse*) override;

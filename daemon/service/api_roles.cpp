@@ -57,6 +57,7 @@ const std::map<std::string, Role, std::less<>>& required_roles() {
       {method(kAcomms, "Encode"), Role::kViewer},
       {method(kAcomms, "Decode"), Role::kViewer},
       {method(kAcomms, "Track"), Role::kViewer},
+      {method(kAcomms, "ListRoutes"), Role::kViewer},
       {method(kAcomms, "Submit"), Role::kOperator},
       {method(kAcomms, "Cancel"), Role::kOperator},
       {method(kAcomms, "SubmitNavigation"), Role::kOperator},

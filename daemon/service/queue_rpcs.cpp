@@ -1,5 +1,6 @@
 // ListQueued, Cancel, Flush and QueueStats: what waits for the link.
 #include "dccl/message_json.h"
+#include "route/forwarder.h"
 #include "service/acomms_service.h"
 #include "service/rpc_status.h"
 #include "util/seconds.h"
@@ -58,6 +59,10 @@ grpc::Status AcommsService::ListQueued(grpc::ServerContext* context, const v1::L
         m.set_expires_at(queued.record.submitted_at + queue->ttl_of(queued));
         m.set_in_flight(queued.in_flight_frame != 0);
         m.set_encoded_bytes(static_cast<uint32_t>(queued.encoded.size()));
+        if (node_.forwarder != nullptr) {
+          m.set_waiting(node_.forwarder->waiting(*queue, queued));
+          m.set_json(node_.forwarder->custody_json(*queue, queued));
+        }
         row.payload = queued.record.payload;
         out.push_back(std::move(row));
       }
@@ -65,6 +70,11 @@ grpc::Status AcommsService::ListQueued(grpc::ServerContext* context, const v1::L
     return out;
   });
   for (Row& row : rows) {
+    // A gateway's custody queue holds envelopes of types it may not know.
+    if (node_.codec.find_type(row.message.type()) == nullptr) {
+      *response->add_messages() = std::move(row.message);
+      continue;
+    }
     std::unique_ptr<google::protobuf::Message> message = node_.codec.new_message(row.message.type());
     if (message->ParsePartialFromString(row.payload)) row.message.set_json(dccl::message_json(*message));
     *response->add_messages() = std::move(row.message);

@@ -1,0 +1,54 @@
+// The queues' side of a gateway (queue/routing.h): custody queues, which
+// hold envelopes for other nodes and have no DCCL type, and the routed form
+// of what the contest chooses. Kept apart from the rest of the manager so
+// that a node without routing runs none of it. Core thread only, but for
+// journal_custody (any thread).
+#include <spdlog/spdlog.h>
+
+#include "core/core_thread.h"
+#include "queue/queue_manager.h"
+
+namespace acomms::queue {
+
+QueueManager::TypeState* QueueManager::custody_state(const std::string& type) {
+  auto it = by_name_.find(type);
+  if (it != by_name_.end()) return it->second;
+  if (routing_ == nullptr) return nullptr;
+  std::optional<QueuePolicy> policy = routing_->custody_policy(type);
+  if (!policy) return nullptr;
+  const int key = next_custody_key_++;
+  TypeState& state = by_id_.try_emplace(key).first->second;
+  state.queue = std::make_unique<Queue>(type, key, *policy, clock_.now_seconds());
+  // No roles and no duplicate filter: nothing here is decoded, and a
+  // custody queue never receives (its messages come from journal_custody).
+  by_name_[type] = &state;
+  spdlog::info("route: custody queue {} made (value_base {}, max {} messages)", type, policy->value_base,
+               policy->max_queue);
+  return &state;
+}
+
+void QueueManager::journal_custody(JournalMessage record, MessageJournal::Appended appended) {
+  journal_.append(std::move(record), std::move(appended));
+}
+
+bool QueueManager::accept_custody(QueuedMessage message) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (custody_state(message.record.type) == nullptr) {
+    spdlog::error("route: custody message {} names no custody queue ({})", message.record.id, message.record.type);
+    return false;
+  }
+  return accept(std::move(message));
+}
+
+std::vector<std::shared_ptr<std::atomic<bool>>> QueueManager::take_ack_conditions() {
+  ACOMMS_ASSERT_CORE_THREAD();
+  return std::exchange(ack_conditions_, {});
+}
+
+RoutedForm QueueManager::routed_form(const Queue& queue, const QueuedMessage& next, const DataRequest& request,
+                                     double now) {
+  if (routing_ == nullptr) return {};
+  return routing_->outgoing(queue, next, request, now);
+}
+
+}  // namespace acomms::queue

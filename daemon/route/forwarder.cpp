@@ -1,0 +1,296 @@
+// Forwarding with custody (forwarder.h says what and why).
+#include "route/forwarder.h"
+
+#include <spdlog/spdlog.h>
+
+#include <charconv>
+#include <stdexcept>
+
+#include "core/core_thread.h"
+
+namespace acomms::route {
+namespace {
+
+constexpr double kClockSkewS = 60;  // a copy on another path may be this much "younger"
+constexpr size_t kMaxRemembered = 16384;
+
+bool is_custody(const std::string& type) { return type.rfind(kCustodyQueuePrefix, 0) == 0; }
+
+std::string custody_queue(uint8_t value_tenths) { return kCustodyQueuePrefix + std::to_string(value_tenths); }
+
+// The envelope a custody message holds (its bytes are ours: always valid).
+std::optional<Envelope> held_envelope(const queue::QueuedMessage& message, uint32_t envelope_id) {
+  return decode_envelope(message.encoded, envelope_id, nullptr, nullptr);
+}
+
+double remaining_ttl(const queue::Queue& queue, const queue::QueuedMessage& message, double now) {
+  return queue.ttl_of(message) - (now - message.record.submitted_at);
+}
+
+// An envelope read to its end, with nothing more to say.
+queue::EnvelopeOutcome consumed(size_t used) {
+  queue::EnvelopeOutcome outcome;
+  outcome.used = used;
+  return outcome;
+}
+
+// ... whose transmission's ACK waits on `condition`.
+queue::EnvelopeOutcome taken_only_if(size_t used, std::shared_ptr<std::atomic<bool>> condition) {
+  queue::EnvelopeOutcome outcome = consumed(used);
+  outcome.ack_only_if = std::move(condition);
+  return outcome;
+}
+
+queue::RoutedForm hold() {
+  queue::RoutedForm form;
+  form.kind = queue::RoutedForm::Kind::kHold;
+  return form;
+}
+
+}  // namespace
+
+Forwarder::Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vector<std::string> links,
+                     const dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock,
+                     double custody_ttl_s, PostToCore post)
+    : table_(config, links, own_id),
+      own_id_(own_id),
+      links_(std::move(links)),
+      queues_(queues),
+      clock_(clock),
+      custody_ttl_s_(custody_ttl_s),
+      post_(std::move(post)),
+      envelope_id_(config.has_envelope_id() ? config.envelope_id() : kDefaultEnvelopeId),
+      hop_limit_(config.has_hop_limit() ? config.hop_limit() : kDefaultHopLimit),
+      max_custody_(config.has_max_custody() ? config.max_custody() : 1000) {
+  if (own_id < 1 || own_id > 65535) {
+    throw std::invalid_argument("routing: this node's id " + std::to_string(own_id) +
+                                " does not fit the envelope (1..65535)");
+  }
+  if (envelope_id_ < 128 || envelope_id_ > 32767) {
+    throw std::invalid_argument("routing.envelope_id " + std::to_string(envelope_id_) + " is not in 128..32767");
+  }
+  if (const dccl::TypeInfo* taken = codec.find_id(static_cast<int>(envelope_id_))) {
+    throw std::invalid_argument("routing.envelope_id " + std::to_string(envelope_id_) + " is the DCCL id of " +
+                                taken->name + ": choose another envelope_id");
+  }
+  if (hop_limit_ < 1 || hop_limit_ > kMaxHopLimit) {
+    throw std::invalid_argument("routing.hop_limit " + std::to_string(hop_limit_) + " is not in 1..15");
+  }
+  if (max_custody_ == 0) throw std::invalid_argument("routing.max_custody must be at least 1");
+}
+
+const std::string& Forwarder::link_name(int link) const {
+  static const std::string none;
+  return link >= 0 && static_cast<size_t>(link) < links_.size() ? links_[static_cast<size_t>(link)] : none;
+}
+
+size_t Forwarder::held() const {
+  size_t n = pending_.size();
+  for (const queue::Queue* queue : queues_.queues()) {
+    if (is_custody(queue->type())) n += queue->size();
+  }
+  return n;
+}
+
+bool Forwarder::holds(const MessageIdentity& identity) const {
+  if (pending_.count(identity) > 0) return true;
+  for (const queue::Queue* queue : queues_.queues()) {
+    if (!is_custody(queue->type())) continue;
+    for (const queue::QueuedMessage& m : queue->messages()) {
+      if (auto e = held_envelope(m, envelope_id_); e && e->identity() == identity) return true;
+    }
+  }
+  return false;
+}
+
+void Forwarder::heard(int link, int32_t src, double now) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  // An envelope's payload comes "from" its origin, which was not heard.
+  if (unwrapping_) return;
+  table_.heard(src, link_name(link), now);
+}
+
+queue::EnvelopeOutcome Forwarder::on_envelope(std::string_view rest, int32_t transmission_src,
+                                              int32_t transmission_dest, int link,
+                                              std::optional<std::string_view> link_figures, double now) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  size_t used = 0;
+  std::string error;
+  std::optional<Envelope> e = decode_envelope(rest, envelope_id_, &used, &error);
+  if (!e) {
+    ++stats_.malformed;
+    spdlog::warn("route: bad envelope from node {}: {}", transmission_src, error);
+    return {};
+  }
+  const bool to_us = transmission_dest == queue::kAnyDestination || transmission_dest == own_id_;
+  // Handed to us: its origin is reachable back through whoever handed it.
+  if (to_us) table_.heard_through(e->origin, transmission_src, link_name(link), now);
+  if (e->destination == own_id_) return deliver_here(*e, used, link, link_figures, now);
+  if (!to_us) {
+    // Overheard on its way to another next hop: not ours to take.
+    ++stats_.overheard;
+    return consumed(used);
+  }
+  return take_custody(std::move(*e), used, now);
+}
+
+queue::EnvelopeOutcome Forwarder::deliver_here(const Envelope& e, size_t used, int link,
+                                               std::optional<std::string_view> link_figures, double now) {
+  for (auto it = delivered_.begin(); it != delivered_.end();) {
+    it = it->second < now ? delivered_.erase(it) : std::next(it);
+  }
+  if (delivered_.count(e.identity()) > 0) {
+    ++stats_.duplicates;
+    spdlog::debug("route: message {}/{} from node {} arrived again: dropped", e.origin, e.seq, e.origin);
+    return consumed(used);
+  }
+  if (starts_envelope(e.payload, envelope_id_)) {
+    ++stats_.malformed;
+    spdlog::warn("route: envelope {}/{} holds another envelope: dropped", e.origin, e.seq);
+    return consumed(used);
+  }
+  if (delivered_.size() >= kMaxRemembered) delivered_.erase(delivered_.begin());
+  delivered_[e.identity()] = now + e.ttl_s + kClockSkewS;
+  ++stats_.delivered;
+  queue::EnvelopeOutcome outcome = consumed(used);
+  unwrapping_ = true;
+  try {
+    outcome.delivered = queues_.receive(e.payload, e.origin, link_figures, link, own_id_);
+  } catch (...) {
+    unwrapping_ = false;
+    throw;
+  }
+  unwrapping_ = false;
+  return outcome;
+}
+
+queue::EnvelopeOutcome Forwarder::take_custody(Envelope e, size_t used, double now) {
+  if (e.hops >= e.hop_limit) {
+    ++stats_.hop_limit_dropped;
+    spdlog::warn("route: message {}/{} for node {} dropped after {} hops (its limit: a routing loop?)", e.origin,
+                 e.seq, e.destination, e.hops);
+    return consumed(used);  // acknowledged: the loop ends here
+  }
+  if (e.ttl_s == 0) {
+    ++stats_.expired_dropped;
+    spdlog::warn("route: message {}/{} for node {} arrived with no ttl left: dropped", e.origin, e.seq,
+                 e.destination);
+    return consumed(used);
+  }
+  if (holds(e.identity())) {
+    ++stats_.custody_copies;  // a resend whose ACK was lost: ours already
+    return consumed(used);
+  }
+  if (held() >= max_custody_) {
+    ++stats_.custody_refused;
+    // Once per burst: the previous hop resends every slot while it lasts.
+    if (!refusing_) spdlog::warn("route: custody of message {}/{} for node {} refused: {} held (routing.max_custody); the "
+                 "previous hop keeps it",
+                 e.origin, e.seq, e.destination, held());
+    refusing_ = true;
+    return taken_only_if(used, std::make_shared<std::atomic<bool>>(false));
+  }
+  refusing_ = false;
+  ++e.hops;
+  const MessageIdentity identity = e.identity();
+  queue::JournalMessage record;
+  record.type = custody_queue(e.value_tenths);
+  record.payload = encode_envelope(e, envelope_id_);
+  record.src = e.origin;
+  record.dest = e.destination;
+  record.submitted_at = now;
+  record.ttl_s = e.ttl_s;
+  auto taken = std::make_shared<std::atomic<bool>>(true);
+  pending_.insert(identity);
+  ++stats_.custody_taken;
+  queues_.journal_custody(record, [this, record, identity, taken](int64_t id, std::exception_ptr error) {
+    // The journal's thread: note a failure at once (the ACK's check runs
+    // later on the core), and hand the rest to the core.
+    if (error) taken->store(false);
+    post_([this, record, identity, taken, id, ok = !error] {
+      pending_.erase(identity);
+      if (!ok) {
+        spdlog::error("route: custody of message {}/{} not stored: no ACK, the previous hop sends again",
+                      identity.origin, identity.seq);
+        return;
+      }
+      queue::QueuedMessage message;
+      message.record = record;
+      message.record.id = id;
+      message.encoded = record.payload;
+      if (!queues_.accept_custody(std::move(message))) taken->store(false);
+    });
+  });
+  spdlog::debug("route: message {}/{} for node {} taken into custody (hop {})", e.origin, e.seq, e.destination,
+                e.hops);
+  return taken_only_if(used, taken);
+}
+
+queue::RoutedForm Forwarder::outgoing(const queue::Queue& queue, const queue::QueuedMessage& message,
+                                      const queue::DataRequest& request, double now) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  using Kind = queue::RoutedForm::Kind;
+  const bool custody = is_custody(queue.type());
+  const int32_t dest = message.record.dest;
+  if (!custody && (dest == queue::kBroadcast || dest == own_id_)) return {};
+  std::optional<NextHop> next = table_.next_hop(dest, now);
+  if (!next) return hold();  // waits for a route
+  if (!custody && next->node == dest) return {};  // a neighbour: plain DCCL
+  if (next->link != link_name(request.link)) return hold();
+  Envelope e;
+  if (custody) {
+    std::optional<Envelope> held = held_envelope(message, envelope_id_);
+    if (!held) return hold();  // cannot happen: we wrote it
+    e = std::move(*held);
+  } else {
+    if (message.encoded.empty() || message.encoded.size() > kMaxPayloadBytes) return hold();
+    e.origin = static_cast<uint16_t>(own_id_);
+    e.destination = static_cast<uint16_t>(dest);
+    e.seq = static_cast<uint16_t>(message.record.id & 0xffff);
+    e.hops = 1;
+    e.hop_limit = static_cast<uint8_t>(hop_limit_);
+    e.value_tenths = value_to_tenths(queue.policy().value_base);
+    e.payload = message.encoded;
+  }
+  e.ttl_s = ttl_to_seconds(remaining_ttl(queue, message, now));
+  queue::RoutedForm form;
+  form.kind = Kind::kWrapped;
+  form.bytes = encode_envelope(e, envelope_id_);
+  form.next_hop = next->node;
+  return form;
+}
+
+std::string Forwarder::waiting(const queue::Queue& queue, const queue::QueuedMessage& message) const {
+  ACOMMS_ASSERT_CORE_THREAD();
+  const int32_t dest = message.record.dest;
+  if (!is_custody(queue.type()) && (dest == queue::kBroadcast || dest == own_id_)) return "";
+  if (table_.next_hop(dest, clock_.now_seconds())) return "";
+  return "no route to node " + std::to_string(dest);
+}
+
+std::string Forwarder::custody_json(const queue::Queue& queue, const queue::QueuedMessage& message) const {
+  if (!is_custody(queue.type())) return "";
+  std::optional<Envelope> e = held_envelope(message, envelope_id_);
+  if (!e) return "";
+  return "{\"origin\":" + std::to_string(e->origin) + ",\"destination\":" + std::to_string(e->destination) +
+         ",\"seq\":" + std::to_string(e->seq) + ",\"hops\":" + std::to_string(e->hops) + ",\"hop_limit\":" +
+         std::to_string(e->hop_limit) + ",\"message_bytes\":" + std::to_string(e->payload.size()) + "}";
+}
+
+std::optional<queue::QueuePolicy> Forwarder::custody_policy(const std::string& type) const {
+  if (!is_custody(type)) return std::nullopt;
+  const std::string_view digits = std::string_view(type).substr(std::string_view(kCustodyQueuePrefix).size());
+  unsigned tenths = 0;
+  auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), tenths);
+  if (ec != std::errc() || end != digits.data() + digits.size() || tenths > 255) return std::nullopt;
+  queue::QueuePolicy policy;
+  policy.ack = true;
+  policy.value_base = tenths / 10.0;
+  policy.ttl_s = custody_ttl_s_;
+  policy.max_queue = max_custody_;
+  policy.newest_first = false;  // forwarded in the order they came
+  policy.on_full = queue::QueuePolicy::OnFull::kRefuseNew;
+  return policy;
+}
+
+}  // namespace acomms::route

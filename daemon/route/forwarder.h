@@ -1,0 +1,140 @@
+#pragma once
+// Forwarding with custody: what makes a node a gateway (config `routing`,
+// README "Gateways: routes and the envelope").
+//
+// The problem. A shore commands a vehicle that only a buoy hears. The buoy
+// must pass the command on without loading the command's type, must not
+// lose it when it crashes between hearing and sending, must not let the
+// shore forget it before the buoy holds it, and must not send it around a
+// loop forever; the vehicle must act on it once even when it came twice.
+//
+// The decision (the envelope's layout: route/envelope.h):
+//  - Origin. A unicast message whose route's next hop is not its
+//    destination goes wrapped in an envelope (origin this node, sequence
+//    its journal id mod 2^16, hops 1, the type's value_base, its remaining
+//    ttl), to the next hop, on the route's link only. A destination that is
+//    a neighbour gets the plain DCCL message (no cost). A unicast message
+//    with no route at all waits in its queue (its ttl still counts).
+//  - Gateway. An envelope addressed to this node (the transmission's
+//    destination) for another node is taken into custody: journaled with
+//    hops + 1 in a custody queue (one per priority level, named
+//    acomms.route.Custody.v<value_base x 10>), and the transmission's ACK
+//    goes only once that is committed (queue/routing.h). Full custody
+//    (routing.max_custody) refuses it: no ACK, the previous hop keeps it.
+//    A copy already held is acknowledged, not stored twice. An envelope
+//    whose hops reached its limit, or whose ttl ran out, is dropped with a
+//    warning and acknowledged (the loop ends here). Custody messages go on
+//    as they came, with their remaining ttl restamped, to the route's next
+//    hop on its link; they wait while there is no route.
+//  - Destination. An envelope for this node is unwrapped and received like
+//    any frame, from its origin, once per identity (origin, sequence): a
+//    second copy within its ttl is counted and dropped. Across a restart
+//    the queues' receive filter (same source and bytes within the type's
+//    window, refilled from the event log) keeps it once.
+//  - Routes are learned: any frame from a node on a link (it is a
+//    neighbour there), and an envelope's origin through the node that
+//    handed it over (route/route_table.h).
+// Not (yet) done: end-to-end acks back along the reverse route, expiry
+// reports to the sender; a held custody message at the head of its queue
+// holds the ones behind it (one queue per priority level, oldest first).
+//
+// Threads: core thread only (queue::Routing's calls), but for the journal's
+// completion of a custody append, which posts to the core (PostToCore).
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "acomms/v1/config.pb.h"
+#include "core/clock.h"
+#include "dccl/codec.h"
+#include "queue/queue_manager.h"
+#include "queue/routing.h"
+#include "route/envelope.h"
+#include "route/route_table.h"
+
+namespace acomms::route {
+
+// Name prefix of custody queues ("acomms.route.Custody.v10": value_base 1).
+inline constexpr const char* kCustodyQueuePrefix = "acomms.route.Custody.v";
+
+struct ForwarderStats {
+  uint64_t custody_taken = 0;      // envelopes for another node handed to the journal
+                                   // (a failed commit is logged, not acknowledged)
+  uint64_t custody_refused = 0;    // ... refused: custody full (no ACK)
+  uint64_t custody_copies = 0;     // ... already held: acknowledged, not stored again
+  uint64_t delivered = 0;          // envelopes for this node passed to the receive side
+  uint64_t duplicates = 0;         // ... a copy of one already delivered: dropped
+  uint64_t hop_limit_dropped = 0;  // envelopes dropped at their hop limit
+  uint64_t expired_dropped = 0;    // envelopes that arrived with no ttl left
+  uint64_t malformed = 0;          // bytes that start like an envelope but are not one
+  uint64_t overheard = 0;          // envelopes for others addressed to another next hop
+};
+
+class Forwarder final : public queue::Routing {
+ public:
+  using PostToCore = std::function<void(std::function<void()>)>;
+
+  // `links`: the node's link names by index (DataRequest::link). `custody_ttl_s`:
+  // the ttl a custody queue's priority grows over (the queues' default
+  // ttl_s). Throws std::invalid_argument naming the routing field (routes,
+  // hop_limit, envelope_id, max_custody) or the type whose DCCL id is the
+  // envelope's. `queues` and `codec` must outlive the forwarder; call
+  // queues.set_routing(this) before queues.restore().
+  Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vector<std::string> links,
+            const dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock, double custody_ttl_s,
+            PostToCore post);
+
+  const RouteTable& routes() const { return table_; }
+  RouteTable& routes() { return table_; }
+  // Why `message`, queued in `queue`, cannot go now ("no route to node
+  // 5"), or "" when it may (queue ls). Core thread.
+  std::string waiting(const queue::Queue& queue, const queue::QueuedMessage& message) const;
+  // A custody message's envelope head as JSON ({"origin":1,...}), or ""
+  // for a message of a DCCL type (queue ls).
+  std::string custody_json(const queue::Queue& queue, const queue::QueuedMessage& message) const;
+  // Every route now (RouteTable::list at the clock's now).
+  std::vector<RouteEntry> list_routes() const { return table_.list(clock_.now_seconds()); }
+  const ForwarderStats& stats() const { return stats_; }
+  // Messages held for others now: in custody queues or being journaled.
+  size_t held() const;
+
+  // queue::Routing
+  uint32_t envelope_id() const override { return envelope_id_; }
+  void heard(int link, int32_t src, double now) override;
+  queue::EnvelopeOutcome on_envelope(std::string_view rest, int32_t transmission_src, int32_t transmission_dest,
+                                     int link, std::optional<std::string_view> link_figures, double now) override;
+  queue::RoutedForm outgoing(const queue::Queue& queue, const queue::QueuedMessage& message,
+                             const queue::DataRequest& request, double now) override;
+  std::optional<queue::QueuePolicy> custody_policy(const std::string& type) const override;
+
+ private:
+  queue::EnvelopeOutcome deliver_here(const Envelope& e, size_t used, int link,
+                                      std::optional<std::string_view> link_figures, double now);
+  queue::EnvelopeOutcome take_custody(Envelope e, size_t used, double now);
+  bool holds(const MessageIdentity& identity) const;
+  const std::string& link_name(int link) const;
+
+  RouteTable table_;
+  int32_t own_id_;
+  std::vector<std::string> links_;
+  queue::QueueManager& queues_;
+  const core::Clock& clock_;
+  double custody_ttl_s_;
+  PostToCore post_;
+  uint32_t envelope_id_;
+  uint32_t hop_limit_;
+  uint32_t max_custody_;
+  bool unwrapping_ = false;         // receiving an envelope's payload now
+  bool refusing_ = false;           // custody refused since the last taken (logged once)
+  std::set<MessageIdentity> pending_;            // custody being journaled
+  std::map<MessageIdentity, double> delivered_;  // identity -> forget after (clock s)
+  ForwarderStats stats_;
+};
+
+}  // namespace acomms::route
