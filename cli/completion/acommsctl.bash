@@ -20,7 +20,7 @@ _acommsctl() {
   for ((i = 1; i < COMP_CWORD; i++)); do
     word="${COMP_WORDS[i]}"
     case "${path:+$path }$word" in
-      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link enable"|"link disable"|"link raw"|"link ping"|"link lbl"|"link mini"|"link cycle"|"route"|"route ls"|"events"|"nav"|"track"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"sim depth-adaptation"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"gram depth"|"gram env"|"gram env show"|"gram env update"|"geov"|"geov serve"|"completion") path="${path:+$path }$word" ;;
+      "status"|"defs"|"defs load"|"defs list"|"send"|"sub"|"queue"|"queue ls"|"queue cancel"|"queue flush"|"queue stats"|"link"|"link status"|"link enable"|"link disable"|"link raw"|"link ping"|"link lbl"|"link mini"|"link calibrate"|"link cycle"|"route"|"route ls"|"events"|"nav"|"track"|"dccl"|"dccl encode"|"dccl decode"|"dccl analyze"|"sim"|"sim queue-market"|"sim mac-discovery"|"sim telemetry"|"sim depth-adaptation"|"gram"|"gram ssp"|"gram tl"|"gram arrivals"|"gram depth"|"gram env"|"gram env show"|"gram env update"|"geov"|"geov serve"|"completion") path="${path:+$path }$word" ;;
     esac
   done
   case "$path" in
@@ -142,7 +142,7 @@ _acommsctl() {
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "status enable disable raw ping lbl mini cycle --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "status enable disable raw ping lbl mini calibrate cycle --help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "link status")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -206,6 +206,16 @@ _acommsctl() {
         --wait|--timeout) COMPREPLY=(); return ;;
       esac
       COMPREPLY=($(compgen -W "--help -h --wait --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+    "link calibrate")
+      case "$prev" in
+        --png) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
+        --since|--timeout) COMPREPLY=(); return ;;
+      esac
+      COMPREPLY=($(compgen -W "--help -h --since --png --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "link cycle")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -235,7 +245,7 @@ _acommsctl() {
       COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "events")
       case "$prev" in
-        --kind) COMPREPLY=($(compgen -W "queued sent acked expired dropped retry received" -- "$cur")); return ;;
+        --kind) COMPREPLY=($(compgen -W "queued sent acked expired dropped retry received packet" -- "$cur")); return ;;
         --type) COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); return ;;
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -348,9 +358,9 @@ _acommsctl() {
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --env|--model-env|--buoy-depth|--start-range|--max-range|--speed|--interval|--rate|--depths|--start-depth|--vertical-speed|--tau-a|--h-max|--min-depth|--max-depth|--min-altitude|--bin|--range-step|--depth-step|--laps|--seed|--threads|--source-level|--noise-level|--sea-state|--band|--shipping|--snr50|--slope|--excess-loss|--own-ship-noise|--sweep|--timeout) COMPREPLY=(); return ;;
+        --env|--model-env|--buoy-depth|--start-range|--max-range|--speed|--interval|--rate|--depths|--start-depth|--vertical-speed|--tau-a|--h-max|--min-depth|--max-depth|--min-altitude|--bin|--range-step|--depth-step|--laps|--seed|--threads|--source-level|--noise-level|--sea-state|--band|--shipping|--snr50|--slope|--excess-loss|--own-ship-noise|--sweep|--noise-decrease|--forecast-horizon|--caustic-uncertainty|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --env --model-env --png --buoy-depth --start-range --max-range --speed --interval --rate --depths --start-depth --vertical-speed --tau-a --h-max --min-depth --max-depth --min-altitude --bin --range-step --depth-step --laps --seed --threads --source-level --noise-level --sea-state --band --shipping --snr50 --slope --excess-loss --own-ship-noise --sweep --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --env --model-env --png --buoy-depth --start-range --max-range --speed --interval --rate --depths --start-depth --vertical-speed --tau-a --h-max --min-depth --max-depth --min-altitude --bin --range-step --depth-step --laps --seed --threads --source-level --noise-level --sea-state --band --shipping --snr50 --slope --excess-loss --own-ship-noise --sweep --noise-decrease --forecast --forecast-horizon --caustic-uncertainty --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "gram")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -376,9 +386,9 @@ _acommsctl() {
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --env|--format|--threads|--timeout) COMPREPLY=(); return ;;
+        --env|--format|--receiver|--threads|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --env --png --format --threads --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --env --png --format --receiver --threads --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "gram arrivals")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -395,9 +405,9 @@ _acommsctl() {
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --range|--speed|--heading|--horizon|--h-max|--min-depth|--max-depth|--min-altitude|--lowpass|--source-level|--noise-level|--array-gain|--threshold|--source-depth|--consumer|--deadline|--timeout) COMPREPLY=(); return ;;
+        --range|--speed|--heading|--horizon|--h-max|--min-depth|--max-depth|--min-altitude|--lowpass|--source-level|--noise-level|--array-gain|--threshold|--source-depth|--consumer|--deadline|--noise-decrease|--forecast-horizon|--current-depth|--vertical-speed|--caustic-uncertainty|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --range --speed --heading --horizon --h-max --h-max-window --min-depth --max-depth --min-altitude --lowpass --zero-phase --source-level --noise-level --array-gain --threshold --source-depth --consumer --deadline --png --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --range --speed --heading --horizon --h-max --h-max-window --min-depth --max-depth --min-altitude --lowpass --zero-phase --source-level --noise-level --array-gain --threshold --source-depth --consumer --deadline --png --noise-decrease --forecast-horizon --current-depth --vertical-speed --caustic-uncertainty --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "gram env")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
@@ -443,9 +453,9 @@ _acommsctl() {
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --listen|--tiles|--attribution|--max-connections|--kml-refresh|--poll|--timeout) COMPREPLY=(); return ;;
+        --listen|--tiles|--attribution|--max-connections|--kml-refresh|--max-period|--poll|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --listen --daemon --token-file --insecure-http --tiles --mbtiles --attribution --max-connections --kml-refresh --poll --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --listen --daemon --token-file --insecure-http --tiles --mbtiles --attribution --max-connections --kml-refresh --max-period --poll --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "completion")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
