@@ -139,9 +139,17 @@ void DaemonFeed::subscribe_loop() {
         if (stopping_) return;
         stream_context_ = &context;
       }
-      auto reader = current->Subscribe(&context, v1::SubscribeRequest());
+      v1::SubscribeRequest request;
+      if (last_seq_ > 0) request.set_after(last_seq_);
+      auto reader = current->Subscribe(&context, request);
       v1::ReceivedMessage message;
+      bool resumed_said = false;
       while (reader->Read(&message)) {
+        if (message.seq() > 0) last_seq_ = message.seq();
+        if (request.has_after() && !resumed_said) {
+          resumed_said = true;
+          say("stream resumed after seq " + std::to_string(request.after()));
+        }
         if (message.type() == kPositionType) {
           telemetry::Position p;
           if (p.ParseFromString(message.payload())) {
@@ -163,7 +171,12 @@ void DaemonFeed::subscribe_loop() {
         std::lock_guard lock(mutex_);
         stream_context_ = nullptr;
       }
-      if (!status.ok() && status.error_code() != grpc::StatusCode::CANCELLED) {
+      if (status.error_code() == grpc::StatusCode::OUT_OF_RANGE) {
+        // Pruned past our seq (the daemon was away longer than its store
+        // keeps): start live again; Track still fills the positions.
+        say("stream cannot resume (" + status.error_message() + "); live from now, positions from Track");
+        last_seq_ = 0;
+      } else if (!status.ok() && status.error_code() != grpc::StatusCode::CANCELLED) {
         say("stream ended: " + status.error_message());
       }
     }

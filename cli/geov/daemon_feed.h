@@ -4,11 +4,13 @@
 // poll once a second (Track since the last position held, for each vehicle
 // it knows; the messages it has queued, by destination).
 //
-// Why both: the stream is immediate but live only (positions carry no
-// resumable seq, SubscribeRequest.after replays none of them), so whatever
-// the stream missed while the daemon restarted, or before the server started,
-// comes from Track; Fleet stores each (vehicle, time) once, so the overlap
-// is harmless and the track has no gap.
+// Why both: the stream is immediate, and it resumes where it stopped
+// (SubscribeRequest.after with the last seq handled, so what the daemon
+// received while the feed reconnected is replayed, none twice), but it
+// starts live: what came before the server started, and positions stored by
+// a daemon older than the store's migration 0010 (they carry no seq), come
+// from Track. Fleet stores each (vehicle, time) once, so the overlap is
+// harmless and the track has no gap.
 //
 // Thread-safety: start() and stop() from the owner's thread; the feed runs
 // two threads of its own that only call Fleet.
@@ -60,6 +62,9 @@ class DaemonFeed {
   grpc::ClientContext* stream_context_ = nullptr;
   std::set<int32_t> sources_;  // every vehicle this daemon named
   int32_t own_id_ = -1;
+  // The last received seq the stream handled; 0 before the first (then the
+  // stream starts live). Subscriber thread only.
+  int64_t last_seq_ = 0;
   std::string last_said_;
   std::thread subscriber_;
   std::thread poller_;
