@@ -3,7 +3,7 @@
 // in), the fleet as JSON, its changes as server-sent events, its history
 // for playback, KML for Google Earth, and tiles from an MBTiles file.
 //
-//   GET /, /geov.js, /geov.css, /leaflet.js, /leaflet.css, /images/*.png
+//   GET /, /geov_map.js, /geov_section.js, /geov_playback.js, /geov.js, /geov.css, /leaflet.js, /leaflet.css, /images/*.png
 //   GET /api/config                     tiles or the metric grid
 //   GET /api/fleet                      snapshot: every vehicle with its track
 //   GET /api/history?from=T&to=T[&src=N]  positions in [from, to]

@@ -204,7 +204,7 @@ TEST_F(GeovBrowser, BothVehiclesMoveLivePlayBackAndExportAsKml) {
 
   // The page's size: everything it loads.
   std::size_t page_bytes = 0;
-  for (const char* asset : {"/", "/geov.js", "/geov.css", "/leaflet.js", "/leaflet.css"}) {
+  for (const char* asset : {"/", "/geov_map.js", "/geov_section.js", "/geov_playback.js", "/geov.js", "/geov.css", "/leaflet.js", "/leaflet.css"}) {
     int status = 0;
     page_bytes += http_get(port, asset, &status).size();
     EXPECT_EQ(status, 200) << asset;
