@@ -58,6 +58,26 @@ TEST(Fleet, UpdatesAfterAnIdAreEveryLaterOneAndAStaleIdResets) {
   EXPECT_TRUE(fleet.updates_after(fleet.epoch(), 4, 0ms).events.empty());
 }
 
+TEST(Fleet, AVehicleHeardShowsItsLinkFiguresAndWhen) {
+  Fleet fleet;
+  fleet.add_positions({at(2, 100, 0, 0)});
+  EXPECT_NE(fleet.snapshot_json(0).find("\"last_heard\":0,\"link\":null"), std::string::npos) << fleet.snapshot_json(0);
+  v1::LinkFigures figures;
+  figures.set_rate(3);
+  figures.set_snr_in_db(12.5);
+  const uint64_t before = fleet.last_update_id();
+  fleet.heard(2, 105, &figures);
+  EXPECT_EQ(fleet.last_update_id(), before + 1);  // pushed to the pages
+  std::string json = fleet.snapshot_json(0);
+  EXPECT_NE(json.find("\"last_heard\":105,\"link\":{\"rate\":3,\"snr_in_db\":12.5,\"snr_out_db\":null"),
+            std::string::npos) << json;
+  fleet.heard(2, 104, nullptr);  // older, no figures: nothing to show
+  EXPECT_EQ(fleet.last_update_id(), before + 1);
+  fleet.heard(2, 110, nullptr);  // heard again, without figures: the last ones stay
+  json = fleet.snapshot_json(0);
+  EXPECT_NE(json.find("\"last_heard\":110,\"link\":{\"rate\":3,\"snr_in_db\":12.5"), std::string::npos) << json;
+}
+
 TEST(Fleet, QueuedMessagesAreListedForTheirDestination) {
   Fleet fleet;
   fleet.add_positions({at(2, 100, 0, 0)});
