@@ -95,20 +95,18 @@ std::string read_file(const std::string& path, const std::string& included_from,
 Fleet Fleet::load(const std::string& path) {
   Fleet fleet;
   fleet.path_ = path;
-  std::vector<std::string> open;
-  fleet.read(path, nullptr, open);
+  fleet.read(path, nullptr);
   return fleet;
 }
 
 Fleet Fleet::parse(const std::string& text, const std::string& path) {
   Fleet fleet;
   fleet.path_ = path;
-  std::vector<std::string> open;
-  fleet.read(path, &text, open);
+  fleet.read(path, &text);
   return fleet;
 }
 
-void Fleet::read(const std::string& path, const std::string* given_text, std::vector<std::string>& open) {
+void Fleet::read(const std::string& path, const std::string* given_text) {
   std::error_code ec;
   fs::path canonical = fs::weakly_canonical(path, ec);
   std::string key = ec ? path : canonical.string();
@@ -132,13 +130,15 @@ void Fleet::read(const std::string& path, const std::string* given_text, std::ve
     std::string included = (fs::path(path).parent_path() / file.include(i)).lexically_normal().string();
     if (fs::path(file.include(i)).is_absolute()) included = file.include(i);
     std::string text_of_include = read_file(included, path, where);
-    read(included, &text_of_include, open);
+    read(included, &text_of_include);
   }
   static const std::regex name_pattern("[A-Za-z0-9_-]+");
   const pb::Descriptor* node_type = v1::FleetNode::descriptor();
   for (int i = 0; i < file.node_size(); ++i) {
     v1::FleetNode& node = *file.mutable_node(i);
     const pb::TextFormat::ParseInfoTree* node_tree = tree.GetTreeForNested(file_type->FindFieldByName("node"), i);
+    pb::TextFormat::ParseInfoTree no_places;
+    if (node_tree == nullptr) node_tree = &no_places;  // every parsed node has one; never trust that blindly
     FleetEntry entry;
     entry.name = node.name();
     int node_line = tree.GetLocation(file_type->FindFieldByName("node"), i).line + 1;

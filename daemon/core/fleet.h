@@ -62,7 +62,9 @@ class Fleet {
   ResolvedNode resolve(const std::string& name) const;
 
  private:
-  void read(const std::string& path, const std::string* text, std::vector<std::string>& open);
+  // Reads `path` (its `text` when given) after its includes; a file already
+  // read is skipped, which also ends include cycles.
+  void read(const std::string& path, const std::string* text);
   void lineage(const std::string& name, std::vector<std::string>& order, std::vector<std::string>& stack) const;
 
   std::string path_;

@@ -157,6 +157,26 @@ TEST_F(ExampleFleet, ExplainNamesTheFileAndLineOfEachField) {
   EXPECT_NE(ls.out.find("auv_1            3        cruise > global > torpedo"), std::string::npos) << ls.out;
 }
 
+TEST_F(ExampleFleet, AcommsdRefusesAClassAnUnknownNodeAndABadFieldNamingTheFleetLine) {
+  RunResult a_class = run(ACOMMSD_BINARY, {"--fleet", fleet_, "--node", "torpedo"}, (dir_ / "class").string());
+  EXPECT_EQ(a_class.exit_code, 1);
+  EXPECT_NE(a_class.err.find("classes.conf:"), std::string::npos) << a_class.err;
+  EXPECT_NE(a_class.err.find("is a class, not a node"), std::string::npos) << a_class.err;
+  RunResult nobody = run(ACOMMSD_BINARY, {"--fleet", fleet_, "--node", "nobody"}, (dir_ / "nobody").string());
+  EXPECT_EQ(nobody.exit_code, 1);
+  EXPECT_NE(nobody.err.find("no node \"nobody\""), std::string::npos) << nobody.err;
+  const fs::path bad = dir_ / "fleet" / "bad.conf";
+  std::ofstream(bad) << "include: \"fleet.conf\"\n"
+                        "node { name: \"auv_9\" parent: \"torpedo\"\n"
+                        "  config { grpc { tcp_listen: \"nonsense\" } } }\n";
+  RunResult field = run(ACOMMSD_BINARY, {"--fleet", bad.string(), "--node", "auv_9"}, (dir_ / "field").string());
+  EXPECT_EQ(field.exit_code, 1);
+  EXPECT_NE(field.err.find(bad.string() + ":3:"), std::string::npos) << field.err;
+  EXPECT_NE(field.err.find("grpc.tcp_listen"), std::string::npos) << field.err;
+  RunResult both = run(ACOMMSD_BINARY, {"--fleet", fleet_, "--config", "x.conf", "--node", "auv_1"}, (dir_ / "both").string());
+  EXPECT_EQ(both.exit_code, 2) << both.err;
+}
+
 TEST(FleetCheckCli, ThePlantedFleetMayNotLaunchAndEachKindIsListed) {
   const fs::path log = fs::path("/tmp") / ("acomms-fleet-check-" + std::to_string(::getpid()));
   RunResult result = run(ACOMMSCTL_BINARY, {"fleet", "check", ACOMMS_SOURCE_DIR "/tests/fleet/planted/fleet.conf"}, log.string());
