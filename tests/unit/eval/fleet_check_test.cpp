@@ -4,6 +4,7 @@
 // nothing else is; and the example fleet passes.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -69,6 +70,31 @@ TEST(FleetCheck, TheExampleFleetMayLaunch) {
   ASSERT_EQ(fleet.node_names().size(), 5u);
   std::vector<FleetFinding> findings = check_fleet(fleet);
   for (const FleetFinding& finding : findings) ADD_FAILURE() << to_string(finding);
+}
+
+// Encryption and next hops, not planted above: a receiver with another
+// passphrase (or none) and a route through an id nobody has.
+TEST(FleetCheck, AnEncryptedTypeNeedsTheSendersPassphraseAndANextHopANode) {
+  const fs::path dir = fs::temp_directory_path() / ("acomms-fleet-check-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string fleet = (dir / "fleet.conf").string();
+  std::ofstream(fleet) << "node { name: \"c\" abstract: true config { dccl { proto_files: \""
+                       << ACOMMS_SOURCE_DIR << "/examples/messages.proto\" }\n"  // 1
+                       << "  mac { name: \"none\" } } }\n"                        // 2
+                       << "node { name: \"a\" parent: \"c\" config { driver { modem_id: 1 }\n"  // 3
+                       << "  dccl { passphrase: \"secret\" } } keys { passphrase_id: \"ops-2026\" } }\n"  // 4
+                       << "node { name: \"b\" parent: \"c\" config { driver { modem_id: 2 }\n"  // 5
+                       << "  routing { route { dest: 1 next_hop: 7 } } } }\n";  // 6
+  std::vector<FleetFinding> findings = check_fleet(core::Fleet::load(fleet));
+  fs::remove_all(dir);
+  ASSERT_EQ(findings.size(), 2u);
+  EXPECT_EQ(findings[0].kind, "route-dest");
+  EXPECT_EQ(core::to_string(findings[0].first), fleet + ":6");
+  EXPECT_EQ(core::to_string(findings[0].second), fleet + ":5");
+  EXPECT_EQ(findings[1].kind, "key");
+  EXPECT_NE(findings[1].message.find("passphrase ops-2026; b has none"), std::string::npos) << findings[1].message;
+  EXPECT_EQ(core::to_string(findings[1].first), fleet + ":4");
+  EXPECT_EQ(core::to_string(findings[1].second), fleet + ":5");
 }
 
 }  // namespace
