@@ -12,6 +12,7 @@
 #include "dccl_command.h"
 #include "defs_command.h"
 #include "events_command.h"
+#include "fleet_command.h"
 #include "geov_command.h"
 #include "nav_command.h"
 #include "track_command.h"
@@ -47,6 +48,7 @@ void add_commands(CLI::App& app, const acomms::cli::GlobalOptions& options) {
   add_sim_command(app, options);
   add_gram_command(app, options);
   add_geov_command(app, options);
+  add_fleet_command(app, options);
   add_completion_command(app);
 }
 

@@ -14,6 +14,7 @@
 
 #include "core/config_error.h"
 #include "core/config_loader.h"
+#include "core/fleet.h"
 #include "core/node_links.h"
 #include "core/logging.h"
 #include "node/daemon.h"
@@ -61,8 +62,15 @@ int main(int argc, char** argv) {
   std::string data_dir;
   std::string socket;
   std::string check_path;
+  std::string fleet_path;
+  std::string node_name;
   bool print_example = false;
-  app.add_option("-c,--config", config_path, "Config file (protobuf text format)");
+  CLI::Option* config_option = app.add_option("-c,--config", config_path, "Config file (protobuf text format)");
+  CLI::Option* fleet_option =
+      app.add_option("--fleet", fleet_path, "Fleet file (README \"Fleet configuration\"); run the node --node of it")
+          ->excludes(config_option);
+  app.add_option("--node", node_name, "The fleet's node to run (see `acommsctl fleet ls FLEET`)")->needs(fleet_option);
+  fleet_option->needs("--node");
   app.add_option("--data-dir", data_dir, "Directory for the store (overrides the config)");
   app.add_option("--socket", socket, "Unix socket for the API (overrides the config)");
   app.add_flag("--example-config", print_example, "Print a complete, commented config and exit");
@@ -98,8 +106,12 @@ int main(int argc, char** argv) {
 
   acomms::v1::Config config;
   try {
-    config = config_path.empty() ? acomms::core::parse_config("", "(defaults)")
-                                 : acomms::core::load_config_file(config_path);
+    if (!fleet_path.empty()) {
+      config = acomms::core::load_fleet_node_config(fleet_path, node_name);
+    } else {
+      config = config_path.empty() ? acomms::core::parse_config("", "(defaults)")
+                                   : acomms::core::load_config_file(config_path);
+    }
     if (!data_dir.empty()) config.set_data_dir(data_dir);
     if (!socket.empty()) config.mutable_grpc()->set_unix_socket(socket);
     acomms::core::check_effective_config(config);

@@ -9,7 +9,7 @@
 // commands that talk to the daemon, run against a socket where no daemon
 // listens, get as far as the daemon (they fail at reaching it, or for want
 // of the input the example reads, never with a usage error). The
-// offline commands' examples (dccl, sim, gram ssp|tl|arrivals, completion)
+// offline commands' examples (dccl, sim, gram ssp|tl|arrivals, completion, fleet)
 // would run for real, so they are not run here.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -160,7 +160,7 @@ class AcommsctlHelpTest : public ::testing::Test {
   }
 
   static bool is_offline(const std::string& command) {
-    for (const char* offline : {"dccl", "sim", "gram ssp", "gram tl", "gram arrivals", "completion"}) {
+    for (const char* offline : {"dccl", "sim", "gram ssp", "gram tl", "gram arrivals", "completion", "fleet"}) {
       const std::string prefix(offline);
       if (command == prefix || command.rfind(prefix + " ", 0) == 0) return true;
     }
@@ -177,7 +177,7 @@ class AcommsctlHelpTest : public ::testing::Test {
 
 TEST_F(AcommsctlHelpTest, TheWalkFindsEveryCommandGroup) {
   for (const char* path : {"status", "defs load", "queue cancel", "link cycle", "link ping", "gram env update",
-                           "gram depth", "sim depth-adaptation", "dccl analyze", "completion"})
+                           "gram depth", "sim depth-adaptation", "dccl analyze", "completion", "fleet check"})
     EXPECT_TRUE(help_.contains(path)) << path;
   EXPECT_GE(help_.size(), 40u);
 }
