@@ -31,7 +31,9 @@ struct DepthOptions {
   double deadline_s = 60;
   double noise_decrease_db_per_km = NAN;
   // The forecast strategy (deep water): asked for when a horizon is given.
-  double forecast_horizon_s = NAN, current_depth_m = 0, vertical_speed_mps = 0.75, caustic_uncertainty_m = 50;
+  // 0.51 m/s: 20 deg of pitch at 1.5 m/s (1.5 sin 20 deg).
+  double forecast_horizon_s = NAN, current_depth_m = 0, vertical_speed_mps = 0.51, caustic_uncertainty_m = 50;
+  double leg_end_m = NAN;
 };
 
 struct EnvOptions {
@@ -107,6 +109,9 @@ void run_depth(const DepthOptions& o, const GlobalOptions& global) {
     f->set_current_depth_m(o.current_depth_m);
     f->set_vertical_speed_mps(o.vertical_speed_mps);
     f->set_caustic_uncertainty_m(o.caustic_uncertainty_m);
+    if (!std::isnan(o.leg_end_m)) f->set_leg_end_range_m(o.leg_end_m);
+  } else if (!std::isnan(o.leg_end_m)) {
+    throw UsageError("--leg-end needs the forecast: give --forecast-horizon");
   }
   auto stub = gram_stub(global);
   grpc::ClientContext context;
@@ -223,9 +228,12 @@ void add_gram_service_commands(CLI::App& gram, const GlobalOptions& options) {
                     "Forecast: how well a caustic's depth is known (m); the objective is low-passed from the "
                     "surface with cutoff 1/this (0: --lowpass)")
       ->capture_default_str();
+  depth->add_option("--leg-end", d.leg_end_m,
+                    "Forecast: the range (m) where the vehicle's leg ends (a turn): no window past it is forecast");
   depth->footer(
       "Examples:\n  acommsctl gram depth --range 3000 --speed 1.5 --max-depth 90 --min-altitude 5 --lowpass 0.02\n"
-      "  acommsctl gram depth --range 30000 --speed 1.5 --max-depth 4900 --forecast-horizon 3600 --current-depth 20");
+      "  acommsctl gram depth --range 30000 --speed 1.5 --max-depth 4900 --forecast-horizon 3600 --current-depth 20 "
+      "--leg-end 60000");
   depth->callback([&options] { run_depth(depth_options, options); });
 
   CLI::App* env = gram.add_subcommand("env", "The environment the daemon holds: show it, or feed it CTD casts");

@@ -72,8 +72,9 @@ void validate(const gram::Environment& env, const DepthAdaptationConfig& c) {
   if (c.noise_decrease_db_per_km) check(require_at_least("noise_decrease_db_per_km", *c.noise_decrease_db_per_km, 0));
   if (c.forecast) {
     check(require_at_least("forecast_horizon_s", c.forecast_horizon_s, c.horizon_s));
-    if (c.forecast_horizon_s / c.horizon_s > 1000)
-      throw std::invalid_argument("forecast_horizon_s must be at most 1000 times horizon_s");
+    if (c.forecast_horizon_s / c.horizon_s > gram::kMaxForecastColumns)
+      throw std::invalid_argument("forecast_horizon_s must be at most " + gram::format_number(gram::kMaxForecastColumns) +
+                                  " times horizon_s");
     check(require_at_least("caustic_uncertainty_m", c.caustic_uncertainty_m, 0));
   }
   check(require_greater("h_max_db", c.h_max_db, 0));

@@ -85,6 +85,7 @@ std::vector<double> forecast_depths(const gram::TransmissionLoss& tl, const gram
     request.range_m = run.range(t);
     request.heading_deg = run.heading_deg(t);
     request.forecast->current_depth_m = depth;
+    request.forecast->leg_end_range_m = t < run.t_turn() ? run.r1 : run.r0;
     const gram::DepthObjectiveResult answer = gram::compute_depth_objective(instances, env, request);
     return answer.forecast->next_depth_m;
   });

@@ -12,7 +12,9 @@
 //     speed; with nothing predicted to receive it keeps its last target;
 //   - forecast (§4.4, gram/depth_forecast.h): the plan over the forecast
 //     horizon; it heads for the depth the plan puts it at by the next
-//     decision (on a straight path, so within the vertical speed).
+//     decision (on a straight path, so within the vertical speed). Its
+//     leg ends at the turn (going out) or at the start range (coming
+//     back): the forecast does not look at windows it will not cross.
 // With a noise decrease over depth the objective is the sonar equation's
 // signal excess (H̄ alone is no proxy for SNR when NL varies with depth,
 // spec §6.6); otherwise eq. 4.3 with H_max.

@@ -125,9 +125,12 @@ class Planner {
     if (ok.empty()) return d;  // hold
     double best = 0;
     for (const Candidate& c : ok) best = std::max(best, c.value);
+    // The earliest column holding a near-best point, and in it the least
+    // pitch (ok is in order of column, then depth: ties go shallowest).
     const Candidate* pick = nullptr;
-    for (const Candidate& c : ok) {  // in order of column, then depth: ties go earliest, shallowest
-      if (c.value < best - o_.optimum_tolerance) continue;
+    for (const Candidate& c : ok) {
+      if (c.value < best * (1 - o_.optimum_tolerance)) continue;
+      if (pick && c.k != pick->k) break;
       if (!pick || c.rate < pick->rate) pick = &c;
     }
     d.choice = ForecastChoice::kOptimum;
@@ -203,7 +206,12 @@ std::optional<std::string> validate_depth_forecast_request(const DepthForecastRe
   if (!(r.forecast_horizon_s >= horizon_s) || !std::isfinite(r.forecast_horizon_s))
     return "forecast_horizon_s = " + format_number(r.forecast_horizon_s) + " must be at least horizon_s = " +
            format_number(horizon_s) + " (one forecast column every horizon_s)";
-  if (r.forecast_horizon_s / horizon_s > 1000) return "forecast_horizon_s must be at most 1000 times horizon_s";
+  if (r.forecast_horizon_s / horizon_s > kMaxForecastColumns)
+    return "forecast_horizon_s = " + format_number(r.forecast_horizon_s) + " must be at most " +
+           format_number(kMaxForecastColumns) + " times horizon_s = " + format_number(horizon_s) +
+           " (one forecast column every horizon_s)";
+  if (r.leg_end_range_m && !(*r.leg_end_range_m >= 0 && std::isfinite(*r.leg_end_range_m)))
+    return "leg_end_range_m must be finite and at least 0";
   if (auto e = require_at_least("current_depth_m", r.current_depth_m, 0.0)) return e;
   if (auto e = require_at_least("caustic_uncertainty_m", r.caustic_uncertainty_m, 0.0)) return e;
   return validate_forecast_options(r.options);

@@ -20,9 +20,15 @@
 //   2. otherwise it targets the optimum within the horizon that it can
 //      reach: among points (column k ≥ 1, depth z) with |z − z₀| ≤ w t_k
 //      whose straight path from (0, z₀) does not cross a shadow zone, the
-//      best objective; among those within `optimum_tolerance` of the best,
-//      the least pitch |z − z₀| / t_k (then the earliest, then the
-//      shallowest);
+//      best objective B; the target is the EARLIEST point near it (at least
+//      (1 − `optimum_tolerance`) B), and in its column the least pitch
+//      |z − z₀| / t_k (then the shallowest). Why earliest and not the least
+//      pitch over the whole horizon, the thesis's words: re-planned every
+//      τ_a, a least-pitch target is nearly always the latest column, so the
+//      vehicle creeps toward points it never reaches and cuts across a
+//      curved band of good depths (measured on the deep Munk replay,
+//      tests/unit/eval/deep_forecast_test.cpp: 0.24 received with least
+//      pitch, 0.43 with the earliest, at 0.51 m/s);
 //   3. with no such point (nothing ahead receives) it holds its depth.
 // "Crossing" a shadow zone: a shadow point on the path after a point that
 // is not in shadow (a vehicle that starts in a shadow may leave it). Points
@@ -56,9 +62,11 @@ struct ForecastField {
 struct ForecastOptions {
   double vertical_speed_mps = 0.75;  // w, > 0
   double ridge_tolerance = 0.05;     // [0, 1]
-  // [0, 1]: 0, the strict optimum (least pitch decides exact ties only);
-  // on the deep Munk replay a tolerance of 0.02 or 0.1 received less.
-  double optimum_tolerance = 0.0;
+  // [0, 1], relative to the best B: points of at least (1 − this) B are
+  // near-best. 0: the strict optimum. 0.1: the objective's scale is the
+  // signal excess over the horizon's best, so 10% of it (about 2 dB of a
+  // 20 dB margin) is within the model's error at a caustic.
+  double optimum_tolerance = 0.1;
   double shadow_objective = 0.0;     // raw objective at or below: shadow, [0, 1)
 };
 
@@ -95,6 +103,10 @@ struct DepthForecastRequest {
   // (spec §6.4). 0: the query's own low-pass, if any.
   double caustic_uncertainty_m = 50;
   ForecastOptions options;  // vertical speed and tolerances
+  // Where the vehicle's straight leg ends (a turn, the end of its run), m:
+  // the windows beyond it are not where the vehicle will be, so the
+  // forecast stops there (the next window is kept). Unset: no end.
+  std::optional<double> leg_end_range_m;
 };
 
 struct DepthForecastResult {
@@ -104,6 +116,11 @@ struct DepthForecastResult {
   ForecastDecision decision;
   double next_depth_m = 0;  // decision.depth_after(current depth, τ_a): where to be at the next window
 };
+
+// Each column is a depth objective over a window: a query may ask at most
+// this many (120: an hour at τ_a = 30 s, four at 120 s), so that one request
+// cannot occupy the model service for minutes.
+inline constexpr double kMaxForecastColumns = 120;
 
 std::optional<std::string> validate_depth_forecast_request(const DepthForecastRequest& request, double horizon_s);
 

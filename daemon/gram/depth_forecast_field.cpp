@@ -27,6 +27,10 @@ DepthForecastResult compute_depth_forecast(std::span<const TransmissionLoss> ins
   for (std::size_t k = 0; k <= columns; ++k) {
     column.range_m = request.range_m + along * (k * request.horizon_s);
     if (k > 0 && (column.range_m < 0 || column.range_m > last_range)) break;
+    // The leg ends (a turn, the end of the run): no column past it but the next window.
+    if (k > 1 && f.leg_end_range_m &&
+        ((along > 0 && column.range_m > *f.leg_end_range_m) || (along < 0 && column.range_m < *f.leg_end_range_m)))
+      break;
     requests.push_back(column);
   }
   std::vector<DepthObjectiveResult> answers;

@@ -8,7 +8,9 @@
 // equation). Decision: column k is the query itself with the range moved
 // to r₀ + |v₀| cos Θ k τ_a (k = 0, 1, ... while k τ_a ≤ the forecast
 // horizon), stopping at the first column whose range leaves the model grid
-// (beyond its last range, or below 0 when closing). Its steering objective
+// (beyond its last range, or below 0 when closing) or, after the next
+// window, passes the end of the vehicle's leg (request.forecast's
+// leg_end_range_m: where it turns, so the windows past it are not its). Its steering objective
 // is low-passed from the surface down with cutoff 1/caustic_uncertainty_m
 // (spec §6.4: the bias towards depth, below a caustic whose depth is known
 // only to about 50 m), or with the query's own low-pass when that is 0; the

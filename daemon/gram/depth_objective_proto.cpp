@@ -60,6 +60,7 @@ DepthObjectiveRequest request_from_proto(const DepthObjectiveQuery& q) {
     f.current_depth_m = q.forecast().current_depth_m();
     f.options.vertical_speed_mps = q.forecast().vertical_speed_mps();
     f.caustic_uncertainty_m = q.forecast().caustic_uncertainty_m();
+    if (q.forecast().has_leg_end_range_m()) f.leg_end_range_m = q.forecast().leg_end_range_m();
     r.forecast = f;
   }
   if (auto e = validate_depth_objective_request(r)) throw std::invalid_argument(*e);

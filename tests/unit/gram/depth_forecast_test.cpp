@@ -1,7 +1,8 @@
 // The forecast strategy of the depth objective (gram/depth_forecast.h) on
 // constructed fields: a ridge it stays on, a shadow zone it does not cross,
-// the reachable optimum with the least pitch; and the field built from a
-// TL grid (gram/depth_forecast_field.h).
+// the earliest near-best reachable point (least pitch within its column);
+// and the field built from a TL grid (gram/depth_forecast_field.h): the leg's
+// end and the cap on columns.
 #include "gram/depth_forecast.h"
 
 #include <gtest/gtest.h>
@@ -82,9 +83,10 @@ TEST(GramDepthForecast, ARidgeThatEndsWithinTheHorizonIsLeftForTheReachableOptim
   EXPECT_EQ(d.choice, ForecastChoice::kOptimum);
   EXPECT_EQ(d.target_depth_m, 100);
   EXPECT_NEAR(d.target_objective, 0.9, 1e-12);
-  // 400 m at the least pitch: at the horizon's end, 1200 s away.
-  EXPECT_DOUBLE_EQ(d.target_time_s, 1200);
-  EXPECT_NEAR(d.vertical_rate_mps, 400.0 / 1200, 1e-12);
+  // 400 m away: the earliest column that reaches it (90 m a column: the
+  // fifth, 600 s), not the horizon's end at the least pitch.
+  EXPECT_DOUBLE_EQ(d.target_time_s, 600);
+  EXPECT_NEAR(d.vertical_rate_mps, 400.0 / 600, 1e-12);
 }
 
 TEST(GramDepthForecast, AVehicleOffTheRidgeIsNotOnIt) {
@@ -132,16 +134,39 @@ TEST(GramDepthForecast, TheOptimumItCanReachWins) {
   EXPECT_DOUBLE_EQ(f4.target_time_s, 240);
 }
 
-TEST(GramDepthForecast, OfEqualOptimaTheOneOfLeastPitch) {
-  // 0.8 at 300 m in column 3 and at 700 m in column 10; from 500 m the
-  // second needs 200 m in 1200 s, the first 200 m in 360 s.
+TEST(GramDepthForecast, OfNearBestPointsTheEarliestNotTheLatest) {
+  // 0.8 at 300 m in column 3 and 0.82 at 700 m in column 10; from 500 m the
+  // second needs 200 m in 1200 s (the least pitch), the first 200 m in 360 s.
+  // Both are within 10% of the best: the earliest is the target.
   const ForecastField f = field(11, [](std::size_t k, double z) {
-    return (k == 3 ? bump(z, 300, 0.8) : 0.0) + (k == 10 ? bump(z, 700, 0.8) : 0.0) + 0.02;
+    return (k == 3 ? bump(z, 300, 0.8) : 0.0) + (k == 10 ? bump(z, 700, 0.82) : 0.0) + 0.02;
   });
   const ForecastDecision d = forecast_depth(f, 500, kOptions);
-  EXPECT_EQ(d.target_depth_m, 700);
-  EXPECT_DOUBLE_EQ(d.target_time_s, 1200);
-  EXPECT_NEAR(d.depth_after(500, 600), 600, 1e-9);  // half way on the straight path
+  EXPECT_EQ(d.target_depth_m, 300);
+  EXPECT_DOUBLE_EQ(d.target_time_s, 360);
+  EXPECT_NEAR(d.depth_after(500, 180), 400, 1e-9);  // half way on the straight path
+  // With the strict optimum (tolerance 0) the better, later one.
+  ForecastOptions strict = kOptions;
+  strict.optimum_tolerance = 0;
+  const ForecastDecision s = forecast_depth(f, 500, strict);
+  EXPECT_EQ(s.target_depth_m, 700);
+  EXPECT_DOUBLE_EQ(s.target_time_s, 1200);
+  // The tolerance is relative: 0.7 is not within 10% of 0.82.
+  const ForecastField g = field(11, [](std::size_t k, double z) {
+    return (k == 3 ? bump(z, 300, 0.7) : 0.0) + (k == 10 ? bump(z, 700, 0.82) : 0.0) + 0.02;
+  });
+  EXPECT_EQ(forecast_depth(g, 500, kOptions).target_depth_m, 700);
+}
+
+TEST(GramDepthForecast, InTheEarliestColumnTheLeastPitch) {
+  // Two equal peaks in column 4 only, at 250 m and 800 m: from 450 m the
+  // nearer (200 m against 350 m) is the target.
+  const ForecastField f = field(11, [](std::size_t k, double z) {
+    return (k == 4 ? std::max(bump(z, 250, 0.9), bump(z, 800, 0.9)) : 0.0) + 0.02;
+  });
+  const ForecastDecision d = forecast_depth(f, 450, kOptions);
+  EXPECT_EQ(d.target_depth_m, 250);
+  EXPECT_DOUBLE_EQ(d.target_time_s, 480);
 }
 
 TEST(GramDepthForecast, ForbiddenDepthsAreNeitherTargetsNorPassages) {
@@ -181,6 +206,16 @@ TEST(GramDepthForecast, BadFieldsAndOptionsAreRefusedByName) {
   r.forecast_horizon_s = 60;
   EXPECT_EQ(*validate_depth_forecast_request(r, 120),
             "forecast_horizon_s = 60 must be at least horizon_s = 120 (one forecast column every horizon_s)");
+  // A query may not ask for more than 120 columns (1000 would hold the
+  // model service for minutes).
+  r.forecast_horizon_s = 120 * 120;
+  EXPECT_FALSE(validate_depth_forecast_request(r, 120));
+  r.forecast_horizon_s = 121 * 120;
+  EXPECT_EQ(*validate_depth_forecast_request(r, 120),
+            "forecast_horizon_s = 14520 must be at most 120 times horizon_s = 120 (one forecast column every horizon_s)");
+  r.forecast_horizon_s = 3600;
+  r.leg_end_range_m = -1;
+  EXPECT_EQ(*validate_depth_forecast_request(r, 120), "leg_end_range_m must be finite and at least 0");
 }
 
 // The field from a TL grid: a layer of low loss at 300 m from 2 km on,
@@ -235,6 +270,21 @@ TEST(GramDepthForecastField, ColumnsAreTheWindowsAheadAndTheVehicleHeadsForTheLa
   q.range_m = 5500;
   const DepthObjectiveResult end = compute_depth_objective(tl, env, q);
   EXPECT_EQ(end.forecast->field.time_s.size(), 3u);  // 5500, 5680, 5860; 6040 is off the grid
+
+  // A leg that ends (the vehicle turns) at 1400 m: the columns stop there,
+  // but the next window is kept: 1000, 1180 (1360 is within; 1540 is past).
+  q.range_m = 1000;
+  q.forecast->leg_end_range_m = 1400;
+  const DepthObjectiveResult leg = compute_depth_objective(tl, env, q);
+  EXPECT_EQ(leg.forecast->field.time_s.size(), 3u);
+  EXPECT_DOUBLE_EQ(leg.forecast->horizon_used_s, 240);
+  q.forecast->leg_end_range_m = 1000;  // turning now: the next window only
+  EXPECT_EQ(compute_depth_objective(tl, env, q).forecast->field.time_s.size(), 2u);
+  // Coming back (heading 180) the leg ends at a smaller range.
+  q.heading_deg = 180;
+  q.range_m = 1800;
+  q.forecast->leg_end_range_m = 1500;
+  EXPECT_EQ(compute_depth_objective(tl, env, q).forecast->field.time_s.size(), 2u);  // 1800, 1620; 1440 is past
 }
 
 }  // namespace

@@ -125,6 +125,11 @@ TEST(GramDepthObjectiveProto, AForecastQueryCarriesItsFieldsAndAnUnsetVerticalSp
   EXPECT_EQ(r.forecast->current_depth_m, 40);
   EXPECT_EQ(r.forecast->options.vertical_speed_mps, 0.5);
   EXPECT_EQ(r.forecast->caustic_uncertainty_m, 50);
+  EXPECT_FALSE(r.forecast->leg_end_range_m);
+  q.mutable_forecast()->set_leg_end_range_m(60000);
+  EXPECT_EQ(request_from_proto(q).forecast->leg_end_range_m, 60000);
+  q.mutable_forecast()->set_forecast_horizon_s(121 * 120);  // more columns than a query may ask
+  EXPECT_NE(error_of(q).find("must be at most 120 times horizon_s"), std::string::npos);
   q.mutable_forecast()->set_forecast_horizon_s(60);  // shorter than one window
   EXPECT_NE(error_of(q).find("forecast_horizon_s = 60 must be at least horizon_s = 120"), std::string::npos);
 }
