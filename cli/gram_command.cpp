@@ -181,10 +181,13 @@ CLI::App* add_gram_command(CLI::App& app, const GlobalOptions& global) {
   tl->add_option("--receiver", options.receiver,
                  "With --png: mark a receiver (a vehicle) at this range and depth, with its depth across the field")
       ->type_name("RANGE_M,DEPTH_M");
-  tl->add_option("--threads", options.threads, "Threads (0: all cores); the result is the same")->capture_default_str();
+  tl->add_option("--threads", options.threads,
+                 "Threads for the model and the CSV text (0: all cores); the output is the same bytes")
+      ->capture_default_str();
   tl->footer(
       "Examples:\n"
       "  acommsctl gram tl --env examples/glint10.env > tl.csv\n"
+      "  acommsctl gram tl --env examples/glint10.env --format shd > tl.shd\n"
       "  acommsctl gram tl --env examples/glint10.env --png tl.png\n"
       "  acommsctl gram tl --env examples/glint10.env --png tl.png --receiver 3000,40");
   tl->callback([] { run_tl(options); });

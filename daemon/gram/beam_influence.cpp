@@ -12,8 +12,8 @@ BeamInfluence::BeamInfluence(const Medium& medium, const ReceiverGrid& receivers
     : medium_(medium), receivers_(receivers), mode_(mode), shape_(shape) {}
 
 void BeamInfluence::add_columns(std::size_t j, double r_hi, const RayPoint& a, const RayPoint& b,
-                                const BeamLaunch& beam, std::vector<std::complex<double>>& pressure,
-                                std::vector<double>& intensity) const {
+                                const BeamLaunch& beam, std::span<std::complex<double>> pressure,
+                                std::span<double> intensity) const {
   const auto& columns = receivers_.columns();
   const double length = std::sqrt((b.r - a.r) * (b.r - a.r) + (b.z - a.z) * (b.z - a.z));
   const double tr = (b.r - a.r) / length, tz = (b.z - a.z) / length;

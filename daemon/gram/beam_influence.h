@@ -12,6 +12,7 @@
 #pragma once
 
 #include <complex>
+#include <span>
 #include <vector>
 
 #include "acomms/gram/environment.pb.h"
@@ -40,7 +41,7 @@ class BeamInfluence {
   // Inline up to the test whether the segment spans a receiver column at
   // all: about half the steps of a run do not, and they should cost no call.
   void add(const RayPoint& a, const RayPoint& b, const BeamLaunch& beam,
-           std::vector<std::complex<double>>& pressure, std::vector<double>& intensity) const {
+           std::span<std::complex<double>> pressure, std::span<double> intensity) const {
     if (a.r == b.r) return;
     const double r_hi = a.r < b.r ? b.r : a.r;
     const std::size_t j = receivers_.first_column_at_or_after(a.r < b.r ? a.r : b.r);
@@ -51,8 +52,8 @@ class BeamInfluence {
  private:
   // Columns j, j+1, ... with range below r_hi (at least column j).
   void add_columns(std::size_t j, double r_hi, const RayPoint& a, const RayPoint& b,
-                   const BeamLaunch& beam, std::vector<std::complex<double>>& pressure,
-                   std::vector<double>& intensity) const;
+                   const BeamLaunch& beam, std::span<std::complex<double>> pressure,
+                   std::span<double> intensity) const;
 
   const Medium& medium_;
   const ReceiverGrid& receivers_;

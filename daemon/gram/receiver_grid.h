@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "acomms/gram/environment.pb.h"
@@ -72,6 +73,13 @@ class ReceiverGrid {
   }
 
  private:
+  // Appends the column of `range` holding `entries` (depth, output index),
+  // sorted.
+  void add_column(double range, const std::vector<std::pair<double, std::size_t>>& entries);
+  // Appends `column` (its depths and indices set) with its depth step
+  // (even_step of its depths).
+  void add_column(ReceiverColumn column, double depth_spacing);
+
   std::vector<ReceiverColumn> columns_;
   std::vector<double> ranges_;  // columns_[j].range_m, contiguous for the search
   std::vector<std::size_t> slot_outputs_;

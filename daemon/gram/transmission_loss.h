@@ -5,8 +5,8 @@
 // of interleaved chunks (every K-th beam) that depends only on the grid
 // size, never on the thread count; each chunk sums its beams in order into
 // its own buffer and the buffers are added in chunk order. Threads only
-// choose which chunk to run, so the result is bit-identical whatever their
-// number.
+// choose which chunk to run, and then which receivers' sums (each in chunk
+// order) to add up, so the result is bit-identical whatever their number.
 // Thread-safe: each call is independent.
 #pragma once
 

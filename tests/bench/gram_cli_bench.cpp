@@ -6,14 +6,19 @@
 // field of tests/bench/envs (201 depths × 1000 ranges, 500 Hz, 2000
 // coherent hat beams) 0.114 s. Prints figures; goals are reported, not
 // enforced (timings depend on the machine's load). Run it alone, e.g.
-// under the build lock on a shared machine.
+// under the build lock on a shared machine. Beside the wall time it prints
+// the process's CPU time (user + system, all threads, from wait4): on a
+// loaded machine the wall time grows with the others' work, the CPU time
+// much less, so it is the figure to compare a change by there.
 //
 //   build/tests/bench/gram_cli_bench [--repeat=N] [--format=csv|shd] [--case=NAME]
 //                                    [--acommsctl=PATH]   (another build, e.g. before a change)
 //   build/tests/bench/gram_cli_bench --smoke    (what ctest runs: one quick run)
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -34,6 +39,7 @@ struct Case {
 
 struct Run {
   double seconds = 0;
+  double cpu_seconds = 0;  // user + system, every thread
   long long output_bytes = 0;
   int status = 0;
 };
@@ -61,9 +67,12 @@ Run run_once(const std::string& acommsctl, const std::string& env, const std::st
     _exit(127);
   }
   int status = 0;
-  waitpid(pid, &status, 0);
+  struct rusage usage{};
+  wait4(pid, &status, 0, &usage);
   Run run;
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto seconds_of = [](const timeval& t) { return static_cast<double>(t.tv_sec) + t.tv_usec * 1e-6; };
+  run.cpu_seconds = seconds_of(usage.ru_utime) + seconds_of(usage.ru_stime);
   run.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
   struct stat st{};
   if (stat(output.c_str(), &st) == 0) run.output_bytes = st.st_size;
@@ -72,7 +81,7 @@ Run run_once(const std::string& acommsctl, const std::string& env, const std::st
 
 int bench(const Case& c, const std::string& acommsctl, const std::string& format, int repeat) {
   const std::string output = "/tmp/gram_cli_bench_" + std::to_string(getpid()) + "." + (format.empty() ? "csv" : format);
-  std::vector<double> seconds;
+  std::vector<double> seconds, cpu;
   Run last;
   for (int i = 0; i < repeat; ++i) {
     last = run_once(acommsctl, c.env, format, output);
@@ -82,13 +91,16 @@ int bench(const Case& c, const std::string& acommsctl, const std::string& format
       return 1;
     }
     seconds.push_back(last.seconds);
+    cpu.push_back(last.cpu_seconds);
   }
   std::remove(output.c_str());
   std::sort(seconds.begin(), seconds.end());
+  std::sort(cpu.begin(), cpu.end());
   const double median = seconds[seconds.size() / 2];
-  std::printf("%-18s %-3s 2 threads  median %8.4f s  (min %.4f, max %.4f, %d runs)  %9.1f kB out   goal %.3f s  %s\n",
+  std::printf("%-18s %-3s 2 threads  median %8.4f s  (min %.4f, max %.4f, %d runs)  CPU median %.4f s  %9.1f kB out"
+              "   goal %.3f s  %s\n",
               c.name, format.empty() ? "csv" : format.c_str(), median, seconds.front(), seconds.back(), repeat,
-              last.output_bytes / 1024.0, c.goal_s, median <= c.goal_s ? "met" : "NOT met");
+              cpu[cpu.size() / 2], last.output_bytes / 1024.0, c.goal_s, median <= c.goal_s ? "met" : "NOT met");
   return 0;
 }
 

@@ -3,6 +3,7 @@
 // back, and refuses bad input with exit status 1 (unreadable or refused
 // file) or 2 (bad usage).
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -12,7 +13,9 @@
 #include <gtest/gtest.h>
 
 #include "child_process.h"
+#include "gram/bellhop_import.h"
 #include "gram/shd_file.h"
+#include "gram/transmission_loss.h"
 
 namespace {
 
@@ -109,6 +112,50 @@ TEST(AcommsctlGram, TlCsvPrintsRangesAndDepthsExactly) {
   EXPECT_NEAR(rows[200 * 150 + 55].depth_m, 150.0, 1e-9);
   EXPECT_NEAR(rows[200 * 150 + 55].range_m, 1400.0, 1e-9);
   EXPECT_NEAR(rows[200 * 150 + 199].range_m, 5000.0, 1e-9);
+}
+
+// The CSV against the library's own run of the same file: coordinates
+// exactly, TL as printf("%.3f") prints the model's double (so within half
+// a thousandth of it), empty on the source axis, `inf` in shadow.
+TEST(AcommsctlGram, TlCsvValuesAreTheModelsFieldToTheThousandth) {
+  const std::string env_file = lloyd_field_env(prefix());
+  const auto r = run(ACOMMSCTL_BINARY, {"gram", "tl", "--env", env_file, "--threads", "2"}, prefix());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  acomms::gram::RunOptions options;
+  options.threads = 1;
+  const auto field =
+      acomms::gram::compute_transmission_loss(acomms::gram::import_bellhop_env_file(env_file).environment, options);
+  const auto rows = csv_rows(r.out);
+  ASSERT_EQ(rows.size(), field.tl_db.size());
+  const std::size_t nr = field.range_m.size();
+  int finite = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].range_m, field.range_m[i % nr]) << "row " << i;
+    ASSERT_EQ(rows[i].depth_m, field.depth_m[i / nr]) << "row " << i;
+    const double tl = field.tl_db[i];
+    if (std::isnan(tl)) {
+      ASSERT_EQ(rows[i].tl, "") << "row " << i;
+    } else if (std::isinf(tl)) {
+      ASSERT_EQ(rows[i].tl, "inf") << "row " << i;
+    } else {
+      char text[400];
+      std::snprintf(text, sizeof text, "%.3f", tl);
+      ASSERT_EQ(rows[i].tl, text) << "row " << i;
+      ASSERT_LE(std::abs(std::stod(rows[i].tl) - tl), 0.0005 * (1 + 1e-12)) << "row " << i;
+      ++finite;
+    }
+  }
+  EXPECT_GT(finite, 40000);
+}
+
+TEST(AcommsctlGram, TlRefusesAnUnknownFormatNamingTheChoices) {
+  const auto r = run(ACOMMSCTL_BINARY, {"gram", "tl", "--env", kEnvs + "lloyd_mirror.env", "--format", "mat"}, prefix());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(r.out.empty()) << "no field is written";
+  EXPECT_NE(r.err.find("--format"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("mat"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("csv"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("shd"), std::string::npos) << r.err;
 }
 
 TEST(AcommsctlGram, TlShdReadsBackAsTheCsvsCoordinatesAndValues) {

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -88,6 +90,56 @@ TEST(GramReceiverGrid, SlotsArePerColumnAndCoverEveryReceiverOnce) {
     std::vector<std::size_t> all(g.size());
     std::iota(all.begin(), all.end(), 0);
     EXPECT_EQ(outputs, all);
+  }
+}
+
+// What the columns of a rectilinear grid are, stated the slow way: a map
+// from each range to its (depth, output index) pairs, sorted. The grid
+// builds them without the per-column sort; the columns must be the same.
+std::vector<std::pair<double, std::vector<std::pair<double, std::size_t>>>> reference_columns(
+    const std::vector<double>& ranges, const std::vector<double>& depths) {
+  std::map<double, std::vector<std::pair<double, std::size_t>>> by_range;
+  for (std::size_t ir = 0; ir < ranges.size(); ++ir)
+    for (std::size_t iz = 0; iz < depths.size(); ++iz)
+      by_range[ranges[ir]].emplace_back(depths[iz], iz * ranges.size() + ir);
+  std::vector<std::pair<double, std::vector<std::pair<double, std::size_t>>>> out;
+  for (auto& [range, entries] : by_range) {
+    std::sort(entries.begin(), entries.end());
+    out.emplace_back(range, entries);
+  }
+  return out;
+}
+
+TEST(GramReceiverGrid, RectilinearColumnsAreTheSortedDepthsOfEachDistinctRange) {
+  // Unsorted ranges and depths, a range listed twice (and -0 beside 0, one
+  // key), a depth listed twice, and a plain even grid.
+  // The last field: whether each column's depths are evenly spaced.
+  const std::vector<std::tuple<std::vector<double>, std::vector<double>, bool>> grids = {
+      {{300, 100, 200, 100, 0.0, -0.0, 50}, {30, 5, 1, 5, 12.5}, false},
+      {{10, 20, 30, 40}, {8, 2, 4, 0, 6}, true},
+      {{1395.97, 5, 2790.5}, {100, 50}, false},  // two depths: no step taken
+  };
+  for (const auto& [ranges, depths, even] : grids) {
+    const ReceiverGrid g(grid(ranges, depths));
+    const auto expected = reference_columns(ranges, depths);
+    ASSERT_EQ(g.columns().size(), expected.size());
+    ASSERT_EQ(g.size(), ranges.size() * depths.size());
+    for (std::size_t j = 0; j < expected.size(); ++j) {
+      const ReceiverColumn& column = g.columns()[j];
+      const auto& [range, entries] = expected[j];
+      EXPECT_EQ(column.range_m, range) << "column " << j;
+      EXPECT_EQ(std::signbit(column.range_m), std::signbit(range)) << "column " << j << ": the first listed is the key";
+      EXPECT_EQ(g.column_range(j), range);
+      ASSERT_EQ(column.depth_m.size(), entries.size()) << "column " << j;
+      for (std::size_t k = 0; k < entries.size(); ++k) {
+        EXPECT_EQ(column.depth_m[k], entries[k].first) << "column " << j << " depth " << k;
+        EXPECT_EQ(column.index[k], entries[k].second) << "column " << j << " depth " << k;
+      }
+      // A column holding a range twice holds each depth twice: not even.
+      const bool column_even = even && entries.size() == depths.size();
+      EXPECT_EQ(column.uniform_spacing, column_even ? 2.0 : 0.0) << "column " << j;
+      EXPECT_EQ(column.inverse_spacing, column_even ? 0.5 : 0.0) << "column " << j;
+    }
   }
 }
 

@@ -2,6 +2,7 @@
 // and the same bytes whatever the number of formatting threads.
 #include "gram/tl_csv.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -111,6 +112,31 @@ TEST(GramTlCsv, FixedThreeDecimalsIsPrintfsTextEvenAtHalves) {
   std::uniform_real_distribution<double> any(-400.0, 4000.0);
   for (int k = 0; k < 200000; ++k) values.push_back(any(random));
   for (double v : values) ASSERT_EQ(fixed3(v), printf_fixed3(v)) << std::hexfloat << v;
+}
+
+// Coordinates whose exact text is hundreds of characters (fixed notation
+// of 1e-300 and 1e300) overrun the per-row room the formatter makes ahead:
+// every row must still be whole, on any thread count; an empty field is
+// the header alone.
+TEST(GramTlCsv, LongCoordinatesAndAnEmptyFieldAreWrittenWhole) {
+  TransmissionLoss tl;
+  for (int i = 1; i <= 3; ++i) tl.range_m.push_back(i * 1e300);
+  for (int i = 1; i <= 12000; ++i) tl.depth_m.push_back(i * 1e-300);
+  for (std::size_t i = 0; i < tl.range_m.size() * tl.depth_m.size(); ++i) tl.tl_db.push_back(40.0 + i * 0.0007);
+  std::string expected = "range_m,depth_m,tl_db\n";
+  for (std::size_t iz = 0; iz < tl.depth_m.size(); ++iz)
+    for (std::size_t ir = 0; ir < tl.range_m.size(); ++ir) {
+      char text[800];
+      char* end = std::to_chars(text, text + sizeof text, tl.range_m[ir], std::chars_format::fixed).ptr;
+      *end++ = ',';
+      end = std::to_chars(end, text + sizeof text, tl.depth_m[iz], std::chars_format::fixed).ptr;
+      *end++ = ',';
+      expected.append(text, end);
+      expected += printf_fixed3(tl.tl_db[iz * tl.range_m.size() + ir]) + "\n";
+    }
+  EXPECT_GT(expected.size(), 36000u * 300);  // far beyond 28 bytes a row
+  for (unsigned threads : {1u, 2u}) EXPECT_TRUE(joined(tl_csv_blocks(tl, threads)) == expected) << threads << " threads";
+  EXPECT_EQ(joined(tl_csv_blocks(TransmissionLoss{}, 2)), "range_m,depth_m,tl_db\n");
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // Properties of a model run: thread-count independence, the flat .bty,
 // the source axis and shadows.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -36,6 +37,37 @@ TEST(GramTransmissionLoss, IsBitIdenticalWhateverTheThreadCount) {
     ASSERT_EQ(one.tl_db.size(), two.tl_db.size());
     EXPECT_EQ(std::memcmp(one.tl_db.data(), two.tl_db.data(), one.tl_db.size() * sizeof(double)), 0);
     EXPECT_EQ(std::memcmp(one.tl_db.data(), five.tl_db.data(), one.tl_db.size() * sizeof(double)), 0);
+  }
+}
+
+// A grid of 40,200 receivers: the chunks' sums and the TL are computed on
+// several threads too, in slices of the receivers; the slices must meet.
+TEST(GramTransmissionLoss, ALargeGridIsBitIdenticalWhateverTheThreadCount) {
+  Environment env = conformance_env("lloyd_mirror.env");
+  env.clear_receiver_range_m();
+  for (int i = 1; i <= 200; ++i) env.add_receiver_range_m(25.0 * i);
+  env.clear_receiver_depth_m();
+  for (int i = 0; i <= 200; ++i) env.add_receiver_depth_m(i);
+  env.set_box_range_m(5100);
+  env.set_beam_count(2000);  // enough ray steps for the run to take several threads
+  for (FieldMode mode : {COHERENT, INCOHERENT}) {
+    env.set_field_mode(mode);
+    RunOptions options;
+    options.keep_pressure = true;
+    options.threads = 1;
+    const auto one = compute_transmission_loss(env, options);
+    ASSERT_EQ(one.tl_db.size(), 40200u);
+    EXPECT_EQ(std::count_if(one.tl_db.begin(), one.tl_db.end(), [](double tl) { return std::isfinite(tl); }), 40200);
+    for (unsigned threads : {2u, 3u}) {
+      options.threads = threads;
+      const auto many = compute_transmission_loss(env, options);
+      ASSERT_EQ(many.tl_db.size(), one.tl_db.size());
+      EXPECT_EQ(std::memcmp(one.tl_db.data(), many.tl_db.data(), one.tl_db.size() * sizeof(double)), 0)
+          << threads << " threads";
+      ASSERT_EQ(many.pressure.size(), one.pressure.size());
+      EXPECT_EQ(std::memcmp(one.pressure.data(), many.pressure.data(), one.pressure.size() * sizeof(one.pressure[0])), 0)
+          << threads << " threads";
+    }
   }
 }
 
