@@ -228,6 +228,8 @@ class QueueManager {
     // The authenticated window (0: not authenticated), set before any
     // Submit; bounds a Submit's ttl as window_s does.
     double auth_window_s = 0;
+    // A custody queue (routed_queues.cpp): envelopes held for other nodes.
+    bool custody = false;
   };
 
   // The tag, stamp and replay checks of one received message of an
@@ -303,6 +305,7 @@ class QueueManager {
   int next_custody_key_ = 1 << 20;
   // The form of the message the last contest() chose (build_frames sends it).
   RoutedForm winner_form_;
+  int64_t winner_id_ = 0;  // ... and which of its queue's messages it is
   std::vector<std::shared_ptr<std::atomic<bool>>> ack_conditions_;
 };
 

@@ -19,6 +19,7 @@ QueueManager::TypeState* QueueManager::custody_state(const std::string& type) {
   const int key = next_custody_key_++;
   TypeState& state = by_id_.try_emplace(key).first->second;
   state.queue = std::make_unique<Queue>(type, key, *policy, clock_.now_seconds());
+  state.custody = true;
   // No roles and no duplicate filter: nothing here is decoded, and a
   // custody queue never receives (its messages come from journal_custody).
   by_name_[type] = &state;

@@ -1,0 +1,70 @@
+// Gateways: what a gateway's queues must not do to the messages they hold
+// (the network: gateway_network.h). Each test is a defect a review found:
+//  - a message that must wait (no route, its next hop on another link) at
+//    the head of its queue held back sendable ones behind it;
+//  - a custody message stood at its custody queue's P (0 after every send)
+//    against a link's cost, so it never beat the cost.
+
+#include "gateway_network.h"
+
+namespace acomms::gateway_test {
+namespace {
+
+using namespace std::chrono_literals;
+
+TEST_F(GatewayNetwork, ACustodyMessageWithNoRouteDoesNotHoldBackOneBehindItForAnotherNode) {
+  build_shore(R"(route { dest: 3 next_hop: 2 link: "sat" } route { dest: 9 next_hop: 2 link: "sat" })");
+  build_buoy("");  // learns the vehicle; node 9 it never hears of
+  build_vehicle();
+  shore_->start();
+  buoy_->start();
+  vehicle_->start();
+  scheduler_.run_for(60s);
+  shore_->submit("net.Command", "src: 1 dest: 9 code: 1");
+  scheduler_.run_for(120s);
+  ASSERT_EQ(buoy_->custody_held(), 1u);  // for node 9, first in its custody queue
+  shore_->submit("net.Command", "src: 1 dest: 3 code: 2");
+  scheduler_.run_for(300s);
+  EXPECT_EQ(commands_received(*vehicle_), 1u);
+  EXPECT_EQ(buoy_->custody_held(), 1u);  // node 9's still waits
+  const queue::Queue* custody = buoy_->queues->find_queue("acomms.route.Custody.v10");
+  ASSERT_NE(custody, nullptr);
+  EXPECT_EQ(buoy_->forwarder->waiting(*custody, custody->messages().front()), "no route to node 9");
+}
+
+TEST_F(GatewayNetwork, AMessageWithNoRouteDoesNotHoldBackAnOlderOneOnItsOrigin) {
+  build_three();
+  shore_->start();
+  buoy_->start();
+  vehicle_->start();
+  scheduler_.run_for(60s);
+  shore_->submit("net.Command", "src: 1 dest: 3 code: 1");
+  shore_->submit("net.Command", "src: 1 dest: 5 code: 2");  // newest first: the head, and no route
+  scheduler_.run_for(300s);
+  EXPECT_EQ(commands_received(*vehicle_), 1u);
+  const queue::Queue& commands = *shore_->queues->find_queue("net.Command");
+  ASSERT_EQ(commands.size(), 1u);
+  EXPECT_EQ(commands.messages().front().record.dest, 5);
+}
+
+TEST_F(GatewayNetwork, ACustodyMessageStandsAgainstALinkCostAtItsOwnValue) {
+  build_shore(R"(route { dest: 3 next_hop: 2 link: "sat" })");
+  // The buoy's acoustic link costs 0.5; net.Command is worth 1
+  // (value_base), so it beats the cost on the buoy as on the shore.
+  buoy_ = std::make_unique<GatewayNode>(
+      2, std::vector{status_proto()}, kQueues, "",
+      std::vector<LinkSpec>{{"sat", sat_, kSatCycle}, {"acoustic", acoustic_, kAcousticCycle, 0.5}}, scheduler_,
+      buoy_journal_);
+  build_vehicle();
+  shore_->start();
+  buoy_->start();
+  vehicle_->start();
+  scheduler_.run_for(60s);
+  shore_->submit("net.Command", "src: 1 dest: 3 code: 7");
+  scheduler_.run_for(300s);
+  EXPECT_EQ(commands_received(*vehicle_), 1u);
+  EXPECT_EQ(buoy_->custody_held(), 0u);
+}
+
+}  // namespace
+}  // namespace acomms::gateway_test
