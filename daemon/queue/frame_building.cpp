@@ -149,8 +149,14 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
       frame.bytes += wrapped ? winner_form_.bytes : next.encoded;
       frame.message_ids.push_back(next.record.id);
       frame.ack_requested = frame.ack_requested || awaits_ack;
+      std::string detail = awaits_ack ? "awaiting ack" : "";
+      if (wrapped) {
+        // "to node 3 through node 2", then the ack it awaits.
+        std::string route = routing_->on_sent(queue, next, winner_form_, now);
+        detail = detail.empty() ? route : route + ", " + detail;
+      }
       emit(*winner, now, {.kind = QueueEventKind::kSent, .message = next.record, .frame_id = frame.frame_id,
-                          .detail = awaits_ack ? "awaiting ack" : "", .removes_message = !awaits_ack});
+                          .detail = detail, .removes_message = !awaits_ack});
       if (awaits_ack) {
         InFlightFrame& in_flight = in_flight_[frame.frame_id];
         in_flight.link = request.link;
@@ -176,8 +182,9 @@ void QueueManager::on_ack(uint64_t frame_id) {
   std::set<TypeState*> types(it->second.types.begin(), it->second.types.end());
   for (TypeState* state : types) {
     for (const QueuedMessage& m : state->queue->take_acked(frame_id)) {
+      const std::string detail = routing_ != nullptr ? routing_->acked_detail(*state->queue, m) : "";
       emit(*state, now, {.kind = QueueEventKind::kAcked, .message = m.record, .frame_id = frame_id,
-                         .removes_message = true});
+                         .detail = detail, .removes_message = true});
     }
   }
   in_flight_.erase(it);

@@ -69,6 +69,7 @@ class FailingJournal final : public queue::MessageJournal {
   std::vector<queue::QueueEvent> authenticated_since(double since) override {
     return inner.authenticated_since(since);
   }
+  std::vector<queue::RoutedIdentity> routed_since(double now) override { return inner.routed_since(now); }
   void flush() override {}
   int64_t last_received_seq() override { return inner.last_received_seq(); }
   void when_committed(Committed committed) override { committed(nullptr); }

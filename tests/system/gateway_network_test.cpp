@@ -36,7 +36,9 @@ TEST_F(GatewayNetwork, ACommandReachesAVehicleTheShoreCannotHearOnceThroughTheBu
   // buoy's by the vehicle; nothing is held anywhere.
   EXPECT_EQ(shore_->queues->find_queue("net.Command")->size(), 0u);
   EXPECT_EQ(shore_journal_.stored(), 0u);
-  EXPECT_EQ(buoy_->forwarder->stats().custody_taken, 1u);
+  // The buoy took two into custody: the command, and the vehicle's
+  // end-to-end ack of it on its way back (route/receipt.h).
+  EXPECT_EQ(buoy_->forwarder->stats().custody_taken, 2u);
   EXPECT_EQ(buoy_->custody_held(), 0u);
   EXPECT_EQ(buoy_journal_.stored(), 0u);
   EXPECT_EQ(vehicle_->forwarder->stats().delivered, 1u);

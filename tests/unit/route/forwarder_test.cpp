@@ -66,7 +66,9 @@ TEST_F(ForwarderTest, CustodyQueuesTakeTheirPriorityFromTheirName) {
   auto policy = forwarder.custody_policy("acomms.route.Custody.v15");
   ASSERT_TRUE(policy);
   EXPECT_DOUBLE_EQ(policy->value_base, 1.5);
-  EXPECT_EQ(policy->max_queue, 7u);
+  // Twice routing.max_custody: the room a link whose modem ACKs in
+  // hardware may push custody into (Forwarder::take_custody).
+  EXPECT_EQ(policy->max_queue, 14u);
   EXPECT_DOUBLE_EQ(policy->ttl_s, 1800);
   EXPECT_FALSE(policy->newest_first);
   EXPECT_EQ(policy->on_full, queue::QueuePolicy::OnFull::kRefuseNew);
