@@ -24,7 +24,7 @@ queue::RoutedForm hold() {
 }  // namespace
 
 Forwarder::Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vector<std::string> links,
-                     const dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock,
+                     dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock,
                      double custody_ttl_s, PostToCore post)
     : table_(config, links, own_id),
       own_id_(own_id),
@@ -47,6 +47,8 @@ Forwarder::Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vecto
     throw std::invalid_argument("routing.envelope_id " + std::to_string(envelope_id_) + " is the DCCL id of " +
                                 taken->name + ": choose another envelope_id");
   }
+  // And none loaded later (LoadDefinitions) may take it either.
+  codec.reserve_id(static_cast<int>(envelope_id_), "routing.envelope_id (the routing envelope)");
   if (hop_limit_ < 1 || hop_limit_ > kMaxHopLimit) {
     throw std::invalid_argument("routing.hop_limit " + std::to_string(hop_limit_) + " is not in 1..15");
   }

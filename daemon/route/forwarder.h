@@ -101,10 +101,11 @@ class Forwarder final : public queue::Routing {
   // the ttl a custody queue's priority grows over (the queues' default
   // ttl_s). Throws std::invalid_argument naming the routing field (routes,
   // hop_limit, envelope_id, max_custody) or the type whose DCCL id is the
-  // envelope's. `queues` and `codec` must outlive the forwarder; call
+  // envelope's, and reserves that id in `codec` (a type loaded later with
+  // it is refused). `queues` and `codec` must outlive the forwarder; call
   // queues.set_routing(this) before queues.restore().
   Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vector<std::string> links,
-            const dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock, double custody_ttl_s,
+            dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock, double custody_ttl_s,
             PostToCore post);
 
   const RouteTable& routes() const { return table_; }
