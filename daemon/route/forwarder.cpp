@@ -274,8 +274,22 @@ std::string Forwarder::waiting(const queue::Queue& queue, const queue::QueuedMes
   ACOMMS_ASSERT_CORE_THREAD();
   const int32_t dest = message.record.dest;
   if (!is_custody(queue.type()) && (dest == queue::kBroadcast || dest == own_id_)) return "";
-  if (table_.next_hop(dest, clock_.now_seconds())) return "";
-  return "no route to node " + std::to_string(dest);
+  std::optional<NextHop> next = table_.next_hop(dest, clock_.now_seconds());
+  if (!next) return "no route to node " + std::to_string(dest);
+  // Its route leads through another node, but the envelope cannot carry it:
+  // it waits for ever (until its ttl), without holding back others.
+  if (!is_custody(queue.type()) && next->node != dest && message.encoded.size() > kMaxPayloadBytes) {
+    return "too large for the routing envelope (" + std::to_string(message.encoded.size()) + " bytes, at most " +
+           std::to_string(kMaxPayloadBytes) + ")";
+  }
+  return "";
+}
+
+// An end-to-end ack or expiry report in custody says so (queue ls).
+std::string Forwarder::receipt_json(const std::string& payload) const {
+  std::optional<Receipt> receipt = decode_receipt(payload, envelope_id_);
+  if (!receipt) return "";
+  return ",\"receipt\":\"" + std::string(to_string(receipt->kind)) + "\",\"about_seq\":" + std::to_string(receipt->seq);
 }
 
 std::string Forwarder::custody_json(const queue::Queue& queue, const queue::QueuedMessage& message) const {
@@ -284,7 +298,8 @@ std::string Forwarder::custody_json(const queue::Queue& queue, const queue::Queu
   if (!e) return "";
   return "{\"origin\":" + std::to_string(e->origin) + ",\"destination\":" + std::to_string(e->destination) +
          ",\"seq\":" + std::to_string(e->seq) + ",\"hops\":" + std::to_string(e->hops) + ",\"hop_limit\":" +
-         std::to_string(e->hop_limit) + ",\"message_bytes\":" + std::to_string(e->payload.size()) + "}";
+         std::to_string(e->hop_limit) + ",\"message_bytes\":" + std::to_string(e->payload.size()) +
+         receipt_json(e->payload) + "}";
 }
 
 std::optional<queue::QueuePolicy> Forwarder::custody_policy(const std::string& type) const {

@@ -157,6 +157,7 @@ class Forwarder final : public queue::Routing {
   queue::EnvelopeOutcome take_custody(Envelope e, size_t used, int link, double now);
   bool holds(const MessageIdentity& identity) const;
   const std::string& link_name(int link) const;
+  std::string receipt_json(const std::string& payload) const;
 
   RouteTable table_;
   int32_t own_id_;

@@ -89,6 +89,7 @@ TEST_F(GatewayNetwork, AMessageThatExpiresInTheBuoysCustodyIsReportedToItsOrigin
   scheduler_.run_for(500s);
 
   EXPECT_EQ(buoy_->custody_held(), 0u);
+  EXPECT_EQ(buoy_->forwarder->stats().receipts_sent, 1u);
   const std::vector<queue::QueueEvent> events = events_of(shore_journal_, id);
   const queue::QueueEvent* expired = first_of(events, queue::QueueEventKind::kExpired);
   ASSERT_NE(expired, nullptr);
@@ -149,7 +150,13 @@ TEST_F(GatewayNetwork, AnEnvelopeInsideADeliveredPayloadIsNotActedOn) {
   EXPECT_EQ(vehicle_->forwarder->stats().malformed, 1u);
   // The outer envelope was delivered: the vehicle holds only its ack.
   EXPECT_EQ(vehicle_->forwarder->stats().receipts_sent, 1u);
-  EXPECT_EQ(vehicle_->custody_held(), 1u);
+  ASSERT_EQ(vehicle_->custody_held(), 1u);
+  // What queue ls shows of it: an end-to-end ack about message 8.
+  const queue::Queue* custody = vehicle_->queues->find_queue("acomms.route.Custody.v10");
+  ASSERT_NE(custody, nullptr);
+  const std::string json = vehicle_->forwarder->custody_json(*custody, custody->messages().front());
+  EXPECT_NE(json.find(R"("destination":1,)"), std::string::npos) << json;
+  EXPECT_NE(json.find(R"("receipt":"delivered","about_seq":8)"), std::string::npos) << json;
 }
 
 }  // namespace
