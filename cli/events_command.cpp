@@ -111,8 +111,8 @@ void run_events(const GlobalOptions& global, const EventsOptions& options) {
 }  // namespace
 
 const std::vector<std::string>& event_kinds() {
-  static const std::vector<std::string> kinds = {"queued", "sent",  "acked",   "expired",
-                                                 "dropped", "retry", "received", "packet"};
+  static const std::vector<std::string> kinds = {"queued", "sent",  "acked",    "expired", "dropped",
+                                                 "retry",  "received", "packet", "delivered"};
   return kinds;
 }
 

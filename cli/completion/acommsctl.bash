@@ -245,7 +245,7 @@ _acommsctl() {
       COMPREPLY=($(compgen -W "--help -h --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "events")
       case "$prev" in
-        --kind) COMPREPLY=($(compgen -W "queued sent acked expired dropped retry received packet" -- "$cur")); return ;;
+        --kind) COMPREPLY=($(compgen -W "queued sent acked expired dropped retry received packet delivered" -- "$cur")); return ;;
         --type) COMPREPLY=($(compgen -W "$(_acommsctl_types)" -- "$cur")); return ;;
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;

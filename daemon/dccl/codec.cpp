@@ -39,6 +39,8 @@ const TypeInfo* Codec::find_type(std::string_view full_name) const {
   return plan ? &plan->info : nullptr;
 }
 
+void Codec::reserve_id(int id, const std::string& owner) { schema_->reserve_id(id, owner); }
+
 const TypeInfo* Codec::find_id(int id) const {
   const TypePlan* plan = schema_->find_id(id);
   return plan ? &plan->info : nullptr;

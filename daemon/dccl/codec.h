@@ -89,6 +89,12 @@ class Codec {
   const TypeInfo* find_type(std::string_view full_name) const;
   const TypeInfo* find_id(int id) const;
   std::vector<const TypeInfo*> types() const;
+  // From now on a type with DCCL id `id` does not load: load() refuses it
+  // as a rule error naming `owner` (a gateway's routing.envelope_id marks
+  // its envelopes in frames; a type with that id would be read as one).
+  // Types already loaded are not checked (the caller does). At start-up,
+  // before the codec is shared (as load()).
+  void reserve_id(int id, const std::string& owner);
 
   // An empty message of a loaded type. Throws Error if not loaded.
   std::unique_ptr<google::protobuf::Message> new_message(std::string_view full_name) const;

@@ -95,6 +95,7 @@ struct SchemaLoader::Pools {
   std::unordered_map<std::string, TypePlan*> by_name;
   std::unordered_map<const gp::Descriptor*, TypePlan*> by_descriptor;
   std::unordered_map<int, TypePlan*> by_id;
+  std::unordered_map<int, std::string> reserved;  // id -> what it is reserved for
   std::map<std::string, std::string> refused;  // type -> reason (TypeRefused)
 
   void add_include_dir(const std::string& dir) {
@@ -209,6 +210,11 @@ struct SchemaLoader::Pools {
         std::string other;
         if (auto it = by_id.find(id); it != by_id.end()) other = it->second->info.name;
         if (auto it = new_ids.find(id); it != new_ids.end()) other = it->second;
+        if (auto it = reserved.find(id); it != reserved.end()) {
+          errs->push_back(plan->info.name + ": DCCL id " + std::to_string(id) + " is reserved for " + it->second +
+                          ": give the type another id");
+          continue;
+        }
         if (!other.empty()) {
           errs->push_back(plan->info.name + ": DCCL id " + std::to_string(id) + " is already used by " + other);
           continue;
@@ -336,6 +342,8 @@ const TypePlan* SchemaLoader::find_id(int id) const {
   auto it = pools_->by_id.find(id);
   return it == pools_->by_id.end() ? nullptr : it->second;
 }
+
+void SchemaLoader::reserve_id(int id, const std::string& owner) { pools_->reserved[id] = owner; }
 
 const std::map<std::string, std::string>& SchemaLoader::refused_types() const { return pools_->refused; }
 

@@ -55,6 +55,8 @@ class SchemaLoader {
   const TypePlan* find(std::string_view full_name) const;
   const TypePlan* find(const google::protobuf::Descriptor* type) const;
   const TypePlan* find_id(int id) const;
+  // See Codec::reserve_id().
+  void reserve_id(int id, const std::string& owner);
   std::vector<const TypeInfo*> types() const;
   // See Codec::refused_types().
   const std::map<std::string, std::string>& refused_types() const;

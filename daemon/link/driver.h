@@ -127,6 +127,12 @@ class Driver {
   // The modem as it identified itself (Micro-Modem: "MM2 2.0.27087" from
   // its $CAREV), for LinkStatus; "" when the driver does not know.
   virtual std::string modem() const { return ""; }
+  // Whether the device itself acknowledges a DATA transmission that asks for
+  // it (a Micro-Modem's $CAACK, an Iridium gateway's receipt) before the
+  // daemon sees it: an ACK then cannot wait for what the daemon does with
+  // the frames (a gateway's custody, route/forwarder.h). Default: false,
+  // the DriverSequence's software ACK, sent once receipts are durable.
+  virtual bool acks_in_hardware() const { return false; }
 };
 
 }  // namespace acomms::link

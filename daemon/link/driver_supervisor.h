@@ -99,6 +99,7 @@ class DriverSupervisor final : public Driver {
                             DriverSpecificDone done) override;
   // The running driver's (nothing while it is down).
   std::string modem() const override { return driver_ ? driver_->modem() : ""; }
+  bool acks_in_hardware() const override { return driver_ && driver_->acks_in_hardware(); }
 
   const DriverStatus& status() const { return status_; }
   // The running driver, or nullptr while it is down (for tests and tools).

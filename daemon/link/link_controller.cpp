@@ -249,6 +249,8 @@ void LinkController::on_receive(const v1::ModemTransmission& transmission) {
   if (transmission.type() == v1::ModemTransmission::ACK) {
     if (transmission.dest() != own_id_) return;
     ++stats_.acks_received;
+    // An ACK to us: the node hears us and we hear it (a gateway's routes).
+    queues_.heard_ack(options_.link_index, transmission.src());
     auto it = awaiting_ack_.find(transmission.src());
     if (it == awaiting_ack_.end()) {
       spdlog::debug("link: ack from {} for nothing we sent it", transmission.src());
@@ -271,6 +273,7 @@ void LinkController::on_receive(const v1::ModemTransmission& transmission) {
   // transmission's dest: a unicast frame may carry broadcast messages. Each
   // message's event keeps the transmission's figures, for replay.
   const std::string figures = link_figures(transmission).SerializeAsString();
+  queues_.set_acks_in_hardware(options_.link_index, driver_.acks_in_hardware());
   for (const std::string& frame : transmission.frame()) {
     for (queue::ReceivedMessage& message : queues_.receive(frame, transmission.src(), figures, options_.link_index,
                                                                     transmission.dest())) {

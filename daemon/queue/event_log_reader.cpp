@@ -9,7 +9,8 @@ namespace {
 constexpr QueueEventKind kAllKinds[] = {QueueEventKind::kQueued,  QueueEventKind::kSent,
                                         QueueEventKind::kAcked,   QueueEventKind::kExpired,
                                         QueueEventKind::kDropped, QueueEventKind::kRetry,
-                                        QueueEventKind::kReceived, QueueEventKind::kPacket};
+                                        QueueEventKind::kReceived, QueueEventKind::kPacket,
+                                        QueueEventKind::kDelivered};
 
 // "?, ?, ?" for an IN list of n values.
 std::string placeholders(size_t n) {

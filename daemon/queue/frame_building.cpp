@@ -13,7 +13,10 @@
 // until on_ack(); without one, they are back in the next transmission's
 // contest. With several links, "the next transmission" is the next of the
 // same link (DataRequest::link), and a link may carry only what the node's
-// choice of link lets it (DataRequest::may_carry). Core thread only.
+// choice of link lets it (DataRequest::may_carry). On a gateway (routing
+// set) "its message" is the first in its order that may go now: a message
+// waiting for a route, or for another link or next hop, is passed over,
+// never a block on the ones behind it. Core thread only.
 
 #include <spdlog/spdlog.h>
 
@@ -64,28 +67,44 @@ QueueManager::TypeState* QueueManager::contest(std::vector<Contender>& field, do
                                                int32_t dest, const DataRequest& request) {
   for (auto it = field.begin(); it != field.end();) {
     Queue& queue = *it->state->queue;
-    const QueuedMessage* next = queue.next_eligible();
-    // With routing (queue/routing.h) the message may go wrapped for a next
-    // hop, or wait for a route; without, its form is itself.
     RoutedForm form;
-    if (next != nullptr) form = routed_form(queue, *next, request, now);
-    const size_t size = form.kind == RoutedForm::Kind::kWrapped ? form.bytes.size() : (next ? next->encoded.size() : 0);
-    const int32_t to = form.kind == RoutedForm::Kind::kWrapped ? form.next_hop : (next ? next->record.dest : 0);
-    bool takes_part = next != nullptr && form.kind != RoutedForm::Kind::kHold && !queue.in_blackout(now) &&
-                      size <= room && (dest == kAnyDestination || to == dest || to == kBroadcast);
-    // The link's cost is held against the type's standing before this
-    // request (priority(now) at its start), not its P after winning a
-    // place: a type worth the link's price fills the transmission.
-    if (takes_part && request.may_carry) {
-      takes_part = request.may_carry(queue.type(), next->record.dest, standing_[it->state]);
+    // Whether `m` may take this place: with routing (queue/routing.h) it
+    // may go wrapped for a next hop, or wait for a route; without, its form
+    // is itself. `to` is whom the transmission carries it to: the next hop
+    // of a wrapped message, not its final destination.
+    auto sendable = [&](const QueuedMessage& m) {
+      RoutedForm candidate = routed_form(queue, m, request, now);
+      if (candidate.kind == RoutedForm::Kind::kHold) return false;
+      const bool wrapped = candidate.kind == RoutedForm::Kind::kWrapped;
+      const size_t size = wrapped ? candidate.bytes.size() : m.encoded.size();
+      const int32_t to = wrapped ? candidate.next_hop : m.record.dest;
+      if (size > room || !(dest == kAnyDestination || to == dest || to == kBroadcast)) return false;
+      // The link's cost is held against the type's standing before this
+      // request (priority(now) at its start), not its P after winning a
+      // place: a type worth the link's price fills the transmission.
+      if (request.may_carry && !request.may_carry(queue.type(), to, standing_[it->state])) return false;
+      form = std::move(candidate);
+      return true;
+    };
+    const QueuedMessage* chosen = nullptr;
+    if (!queue.in_blackout(now)) {
+      if (routing_ != nullptr) {
+        // A gateway's queue holds messages for many next hops and links:
+        // one that must wait (no route, another link, another next hop)
+        // never blocks a sendable one behind it.
+        chosen = queue.first_eligible(sendable);
+      } else if (const QueuedMessage* next = queue.next_eligible(); next != nullptr && sendable(*next)) {
+        chosen = next;
+      }
     }
-    if (!takes_part) {
+    if (chosen == nullptr) {
       it = field.erase(it);
       continue;
     }
     // The winner's standing after it sends: P = 0, sent now. Re-rank it.
     TypeState* winner = it->state;
     winner_form_ = std::move(form);
+    winner_id_ = chosen->record.id;
     Contender after{0.0, now, it->dccl_id, winner};
     field.erase(it);
     field.insert(std::upper_bound(field.begin(), field.end(), after), after);
@@ -103,7 +122,14 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
   expire();
   standing_.clear();
   if (request.may_carry) {
-    for (auto& [id, state] : by_id_) standing_[&state] = state.queue->priority(now);
+    for (auto& [id, state] : by_id_) {
+      // A message in custody was judged worth sending by its origin's
+      // marketplace; against a link's cost it stands at its own value
+      // (value_base), not at its custody queue's P, which restarts at 0
+      // on every send and would keep it off any link that costs.
+      const double p = state.queue->priority(now);
+      standing_[&state] = state.custody ? std::max(p, state.queue->policy().value_base) : p;
+    }
   }
 
   std::vector<Frame> frames;
@@ -114,7 +140,7 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
     std::vector<Contender> field = contenders(now);
     while (TypeState* winner = contest(field, now, request.max_frame_bytes - frame.bytes.size(), dest, request)) {
       Queue& queue = *winner->queue;
-      const QueuedMessage& next = *queue.next_eligible();
+      const QueuedMessage& next = *queue.find(winner_id_);
       const bool wrapped = winner_form_.kind == RoutedForm::Kind::kWrapped;
       if (dest == kAnyDestination) dest = wrapped ? winner_form_.next_hop : next.record.dest;
       // An ack needs a single addressee, a link that carries acks, and a
@@ -123,8 +149,14 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
       frame.bytes += wrapped ? winner_form_.bytes : next.encoded;
       frame.message_ids.push_back(next.record.id);
       frame.ack_requested = frame.ack_requested || awaits_ack;
+      std::string detail = awaits_ack ? "awaiting ack" : "";
+      if (wrapped) {
+        // "to node 3 through node 2", then the ack it awaits.
+        std::string route = routing_->on_sent(queue, next, winner_form_, now);
+        detail = detail.empty() ? route : route + ", " + detail;
+      }
       emit(*winner, now, {.kind = QueueEventKind::kSent, .message = next.record, .frame_id = frame.frame_id,
-                          .detail = awaits_ack ? "awaiting ack" : "", .removes_message = !awaits_ack});
+                          .detail = detail, .removes_message = !awaits_ack});
       if (awaits_ack) {
         InFlightFrame& in_flight = in_flight_[frame.frame_id];
         in_flight.link = request.link;
@@ -150,8 +182,9 @@ void QueueManager::on_ack(uint64_t frame_id) {
   std::set<TypeState*> types(it->second.types.begin(), it->second.types.end());
   for (TypeState* state : types) {
     for (const QueuedMessage& m : state->queue->take_acked(frame_id)) {
+      const std::string detail = routing_ != nullptr ? routing_->acked_detail(*state->queue, m) : "";
       emit(*state, now, {.kind = QueueEventKind::kAcked, .message = m.record, .frame_id = frame_id,
-                         .removes_message = true});
+                         .detail = detail, .removes_message = true});
     }
   }
   in_flight_.erase(it);

@@ -1,6 +1,7 @@
 #include "queue/memory_journal.h"
 
 #include <algorithm>
+#include <map>
 
 namespace acomms::queue {
 
@@ -34,6 +35,20 @@ std::vector<QueueEvent> MemoryJournal::received_since(double since) {
   std::vector<QueueEvent> out;
   for (const QueueEvent& event : events_) {
     if (event.kind == QueueEventKind::kReceived && event.time >= since) out.push_back(event);
+  }
+  return out;
+}
+
+std::vector<RoutedIdentity> MemoryJournal::routed_since(double now) {
+  std::lock_guard lock(mutex_);
+  // Newest row per identity, as the store's INSERT OR REPLACE keeps it.
+  std::map<std::pair<int32_t, int32_t>, RoutedIdentity> latest;
+  for (const QueueEvent& event : events_) {
+    if (event.routed) latest[{event.routed->origin, event.routed->seq}] = *event.routed;
+  }
+  std::vector<RoutedIdentity> out;
+  for (const auto& [key, routed] : latest) {
+    if (routed.forget_after >= now) out.push_back(routed);
   }
   return out;
 }

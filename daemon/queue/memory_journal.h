@@ -19,6 +19,7 @@ class MemoryJournal final : public MessageJournal {
   std::vector<JournalMessage> load() override;
   std::vector<QueueEvent> received_since(double since) override;
   std::vector<QueueEvent> authenticated_since(double sent_since) override;
+  std::vector<RoutedIdentity> routed_since(double now) override;
   void flush() override {}
   int64_t last_received_seq() override;
   // Runs `committed` at once: memory has nothing to wait for.

@@ -84,6 +84,12 @@ class MessageJournal {
   // restart. Called at start-up.
   virtual std::vector<QueueEvent> authenticated_since(double sent_since) = 0;
 
+  // The identities of routed messages delivered here (QueueEvent::routed)
+  // still to be known at `now` (forget_after >= now); those past it are
+  // forgotten. What the forwarder must remember again after a restart.
+  // Called at start-up.
+  virtual std::vector<RoutedIdentity> routed_since(double now) = 0;
+
   // The last received sequence number handed out (0: none yet), read at
   // start-up: the queue continues from it. Numbers are assigned by the
   // queue (QueueEvent::seq) and made durable by record().

@@ -42,6 +42,24 @@ class Queue {
   // The message this queue would send next (newest or oldest first, per
   // policy), skipping those awaiting an ack; nullptr if none.
   const QueuedMessage* next_eligible() const;
+  // The first message in that same order, not awaiting an ack, that
+  // `sendable` accepts; nullptr if none. A gateway's queues hold messages
+  // for many next hops: one that must wait (no route, another link) must
+  // not hold back the ones behind it (frame_building.cpp).
+  template <typename Pred>
+  const QueuedMessage* first_eligible(Pred sendable) const {
+    auto accept = [&](const QueuedMessage& m) { return m.in_flight_frame == 0 && sendable(m); };
+    if (policy_.newest_first) {
+      for (auto it = messages_.rbegin(); it != messages_.rend(); ++it) {
+        if (accept(*it)) return &*it;
+      }
+      return nullptr;
+    }
+    for (const QueuedMessage& m : messages_) {
+      if (accept(m)) return &m;
+    }
+    return nullptr;
+  }
 
   // Marks a message sent at `now`: in flight in `frame_id` (awaiting its
   // ack) when frame_id != 0, else removed.

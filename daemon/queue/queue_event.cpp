@@ -24,6 +24,8 @@ std::string_view to_string(QueueEventKind kind) {
       return "received";
     case QueueEventKind::kPacket:
       return "packet";
+    case QueueEventKind::kDelivered:
+      return "delivered";
   }
   return "unknown";
 }

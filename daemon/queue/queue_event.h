@@ -22,9 +22,20 @@ enum class QueueEventKind {
   // not, with its link figures (measured and predicted SNR; LinkFigures.
   // decoded). type "" and message_id 0. What acommsctl link calibrate fits.
   kPacket,
+  // A routed message's end-to-end ack came back from its destination
+  // (route/receipt.h): it arrived there. Its hop's ACK was kAcked.
+  kDelivered,
 };
 
 std::string_view to_string(QueueEventKind kind);
+
+// A message that came wrapped in a routing envelope (route/envelope.h):
+// which it was, and until when a copy of it must be known as one.
+struct RoutedIdentity {
+  int32_t origin = 0;
+  int32_t seq = 0;
+  double forget_after = 0;  // Clock seconds
+};
 
 struct QueueEvent {
   QueueEventKind kind = QueueEventKind::kQueued;
@@ -61,6 +72,10 @@ struct QueueEvent {
   // accepted before senders were told apart: their bytes are refused from
   // any sender.
   std::optional<int32_t> auth_sender;
+  // kReceived of a message unwrapped from an envelope: its identity, kept
+  // with the event (migrations/0013_routed_identity.sql) so that a copy
+  // arriving after a restart is still delivered once.
+  std::optional<RoutedIdentity> routed;
 };
 
 struct JournalMessage;

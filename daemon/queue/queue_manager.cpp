@@ -88,6 +88,7 @@ void QueueManager::emit(TypeState& state, double now, const Change& change) {
     case QueueEventKind::kRetry: ++s.retried; break;
     case QueueEventKind::kReceived: ++s.received; break;
     case QueueEventKind::kPacket: break;  // never a message's (record_packet)
+    case QueueEventKind::kDelivered: ++s.delivered; break;
   }
   QueueEvent event;
   event.kind = kind;
@@ -108,7 +109,10 @@ void QueueManager::emit(TypeState& state, double now, const Change& change) {
   }
   // Numbered here, on the core thread, so numbers follow the order messages
   // are passed on; the journal makes each durable with its event.
-  if (kind == QueueEventKind::kReceived) event.seq = ++last_received_seq_;
+  if (kind == QueueEventKind::kReceived) {
+    event.seq = ++last_received_seq_;
+    event.routed = receiving_routed_;
+  }
   // Losses are worth an operator's attention; the rest is routine.
   auto level = (kind == QueueEventKind::kDropped || kind == QueueEventKind::kExpired)
                    ? spdlog::level::warn
@@ -344,6 +348,7 @@ void QueueManager::expire() {
   double now = clock_.now_seconds();
   for (auto& [id, state] : by_id_) {
     for (const QueuedMessage& m : state.queue->take_expired(now)) {
+      if (routing_ != nullptr) routing_->expired(*state.queue, m, now);
       emit(state, now, {.kind = QueueEventKind::kExpired, .message = m.record, .detail = "ttl passed",
                         .removes_message = true});
     }

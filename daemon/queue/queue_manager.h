@@ -149,6 +149,24 @@ class QueueManager {
   // just received goes only if all are still true once its receipts are
   // durable.
   std::vector<std::shared_ptr<std::atomic<bool>>> take_ack_conditions();
+  // Core thread, routing's side of a reception (routed_queues.cpp): an ACK
+  // from `src` on `link`; whether the driver of `link` ACKs in hardware.
+  void heard_ack(int link, int32_t src);
+  void set_acks_in_hardware(int link, bool in_hardware);
+  // Core thread: receive() of an envelope's payload, whose received event
+  // keeps the routed identity (origin, seq) until `forget_after` so a copy
+  // is known after a restart (MessageJournal::routed_since).
+  std::vector<ReceivedMessage> receive_routed(std::string_view payload, int32_t origin, uint16_t seq,
+                                              double forget_after, std::optional<std::string_view> link_figures,
+                                              int link);
+  // The identities of routed messages delivered here that are still to be
+  // known (MessageJournal::routed_since now): the forwarder's at start.
+  std::vector<RoutedIdentity> routed_delivered() { return journal_.routed_since(clock_.now_seconds()); }
+  // Core thread: logs and journals what routing learned of `message` (of
+  // queue `type`) after it left the queue (an end-to-end ack: kDelivered; an
+  // expiry report: kExpired). False when no queue has that name.
+  bool report_routed(const std::string& type, QueueEventKind kind, const JournalMessage& message,
+                     const std::string& detail);
 
   // Logs a "packet" event (QueueEventKind::kPacket): one packet heard from
   // `src`, with its serialized acomms.v1.LinkFigures. Core thread only.
@@ -228,6 +246,8 @@ class QueueManager {
     // The authenticated window (0: not authenticated), set before any
     // Submit; bounds a Submit's ttl as window_s does.
     double auth_window_s = 0;
+    // A custody queue (routed_queues.cpp): envelopes held for other nodes.
+    bool custody = false;
   };
 
   // The tag, stamp and replay checks of one received message of an
@@ -303,7 +323,10 @@ class QueueManager {
   int next_custody_key_ = 1 << 20;
   // The form of the message the last contest() chose (build_frames sends it).
   RoutedForm winner_form_;
+  int64_t winner_id_ = 0;  // ... and which of its queue's messages it is
   std::vector<std::shared_ptr<std::atomic<bool>>> ack_conditions_;
+  // Set while receive_routed() runs: the identity its received event keeps.
+  std::optional<RoutedIdentity> receiving_routed_;
 };
 
 }  // namespace acomms::queue

@@ -12,6 +12,7 @@ struct QueueStats {
   uint64_t dropped = 0;
   uint64_t retried = 0;
   uint64_t received = 0;
+  uint64_t delivered = 0;  // end-to-end acks of routed messages (route/receipt.h)
   // Submits a full REFUSE_NEW queue refused before they were stored (they
   // have no id and no events). A Submit already on its way to the disk
   // when the queue filled is stored, then dropped: counted in `dropped`.

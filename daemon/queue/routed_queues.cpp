@@ -19,6 +19,7 @@ QueueManager::TypeState* QueueManager::custody_state(const std::string& type) {
   const int key = next_custody_key_++;
   TypeState& state = by_id_.try_emplace(key).first->second;
   state.queue = std::make_unique<Queue>(type, key, *policy, clock_.now_seconds());
+  state.custody = true;
   // No roles and no duplicate filter: nothing here is decoded, and a
   // custody queue never receives (its messages come from journal_custody).
   by_name_[type] = &state;
@@ -43,6 +44,37 @@ bool QueueManager::accept_custody(QueuedMessage message) {
 std::vector<std::shared_ptr<std::atomic<bool>>> QueueManager::take_ack_conditions() {
   ACOMMS_ASSERT_CORE_THREAD();
   return std::exchange(ack_conditions_, {});
+}
+
+void QueueManager::heard_ack(int link, int32_t src) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (routing_ != nullptr) routing_->acked_by(link, src, clock_.now_seconds());
+}
+
+void QueueManager::set_acks_in_hardware(int link, bool in_hardware) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (routing_ != nullptr) routing_->set_acks_in_hardware(link, in_hardware);
+}
+
+std::vector<ReceivedMessage> QueueManager::receive_routed(std::string_view payload, int32_t origin, uint16_t seq,
+                                                          double forget_after,
+                                                          std::optional<std::string_view> link_figures, int link) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  receiving_routed_ = RoutedIdentity{origin, seq, forget_after};
+  struct Clear {
+    std::optional<RoutedIdentity>& routed;
+    ~Clear() { routed.reset(); }
+  } clear{receiving_routed_};
+  return receive(payload, origin, link_figures, link, own_id_);
+}
+
+bool QueueManager::report_routed(const std::string& type, QueueEventKind kind, const JournalMessage& message,
+                                 const std::string& detail) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  auto it = by_name_.find(type);
+  if (it == by_name_.end()) return false;
+  emit(*it->second, clock_.now_seconds(), {.kind = kind, .message = message, .detail = detail});
+  return true;
 }
 
 RoutedForm QueueManager::routed_form(const Queue& queue, const QueuedMessage& next, const DataRequest& request,

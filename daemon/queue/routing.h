@@ -60,6 +60,12 @@ class Routing {
 
   // Something was heard from `src` on link `link` (any DATA transmission).
   virtual void heard(int link, int32_t src, double now) = 0;
+  // `src` acknowledged a transmission of ours on `link`: both ways work.
+  virtual void acked_by(int link, int32_t src, double now) = 0;
+  // Whether `link`'s driver acknowledges in the modem, before the daemon
+  // sees the transmission (so an ACK cannot wait for custody). Told before
+  // each reception on that link.
+  virtual void set_acks_in_hardware(int link, bool in_hardware) = 0;
 
   // The envelope at the start of `rest`, heard from `transmission_src` in
   // a transmission to `transmission_dest` (kAnyDestination: not known) on
@@ -71,6 +77,16 @@ class Routing {
   // asks for.
   virtual RoutedForm outgoing(const Queue& queue, const QueuedMessage& message, const DataRequest& request,
                               double now) = 0;
+
+  // `message` of `queue` went in a frame as `form`: what the sent event
+  // adds ("" for none).
+  virtual std::string on_sent(const Queue& queue, const QueuedMessage& message, const RoutedForm& form,
+                              double now) = 0;
+  // What the acked event of `message` adds ("" for none): a wrapped one's
+  // ACK is a hop's, not its destination's.
+  virtual std::string acked_detail(const Queue& queue, const QueuedMessage& message) = 0;
+  // `message` of `queue` expired here (before the expired event).
+  virtual void expired(const Queue& queue, const QueuedMessage& message, double now) = 0;
 
   // The policy of the custody queue named `type`, or nullopt when `type` is
   // not a custody queue's name (QueueManager makes such queues on demand,

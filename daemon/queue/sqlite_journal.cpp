@@ -36,6 +36,13 @@ constexpr std::string_view kInsertAuthAccepted =
 constexpr std::string_view kForgetAuthAccepted = "DELETE FROM auth_accepted WHERE sent_s < ?";
 constexpr std::string_view kLoadAuthAccepted =
     "SELECT type, encoded, sent_s, src FROM auth_accepted WHERE sent_s >= ? ORDER BY sent_s";
+// INSERT OR REPLACE: a sequence seen again after its origin wrapped is a new
+// message, kept until its own time.
+constexpr std::string_view kInsertRouted =
+    "INSERT OR REPLACE INTO route_delivered (origin, seq, forget_after) VALUES (?, ?, ?)";
+constexpr std::string_view kForgetRouted = "DELETE FROM route_delivered WHERE forget_after < ?";
+constexpr std::string_view kLoadRouted =
+    "SELECT origin, seq, forget_after FROM route_delivered WHERE forget_after >= ? ORDER BY forget_after";
 
 // A cached statement left mid-step would hold the batch open; reset it
 // whichever way the work ends.
@@ -168,6 +175,15 @@ void SqliteJournal::write_event(const QueueEvent& event) {
     forget.bind_double(1, event.auth_forget_before);
     forget.step();
   }
+  if (event.routed) {
+    // With its received event, as auth_accepted: delivered and known as
+    // delivered are durable together.
+    Statement& routed = writer_.prepared(kInsertRouted);
+    ResetOnExit reset_routed(routed);
+    routed.bind(1, int64_t{event.routed->origin}).bind(2, int64_t{event.routed->seq});
+    routed.bind_double(3, event.routed->forget_after);
+    routed.step();
+  }
   // Same savepoint, same transaction: the event and the removal are on disk
   // together or not at all.
   if (event.removes_message && event.message_id != 0) {
@@ -216,6 +232,26 @@ std::vector<QueueEvent> SqliteJournal::received_since(double since) {
           e.encoded = query.column_blob(4);
         }
         return events;
+      })
+      .get();
+}
+
+std::vector<RoutedIdentity> SqliteJournal::routed_since(double now) {
+  return writer_
+      .submit([now](Database& db) {
+        Statement forget = db.prepare(kForgetRouted);
+        forget.bind_double(1, now);
+        forget.step();
+        std::vector<RoutedIdentity> out;
+        Statement query = db.prepare(kLoadRouted);
+        query.bind_double(1, now);
+        while (query.step()) {
+          RoutedIdentity& r = out.emplace_back();
+          r.origin = static_cast<int32_t>(query.column_int64(0));
+          r.seq = static_cast<int32_t>(query.column_int64(1));
+          r.forget_after = query.column_double(2);
+        }
+        return out;
       })
       .get();
 }

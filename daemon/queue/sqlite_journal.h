@@ -35,6 +35,7 @@ class SqliteJournal final : public MessageJournal {
   std::vector<QueueEvent> received_since(double since) override;
   // Throws store::StoreError when the store cannot be read.
   std::vector<QueueEvent> authenticated_since(double sent_since) override;
+  std::vector<RoutedIdentity> routed_since(double now) override;
   // Throws store::StoreError when the store cannot be read.
   int64_t last_received_seq() override;
   // Throws store::StoreError when the writer is stopped.

@@ -7,39 +7,13 @@
 #include <stdexcept>
 
 #include "core/core_thread.h"
+#include "route/forwarder_internal.h"
 
 namespace acomms::route {
+
+using namespace internal;
+
 namespace {
-
-constexpr double kClockSkewS = 60;  // a copy on another path may be this much "younger"
-constexpr size_t kMaxRemembered = 16384;
-
-bool is_custody(const std::string& type) { return type.rfind(kCustodyQueuePrefix, 0) == 0; }
-
-std::string custody_queue(uint8_t value_tenths) { return kCustodyQueuePrefix + std::to_string(value_tenths); }
-
-// The envelope a custody message holds (its bytes are ours: always valid).
-std::optional<Envelope> held_envelope(const queue::QueuedMessage& message, uint32_t envelope_id) {
-  return decode_envelope(message.encoded, envelope_id, nullptr, nullptr);
-}
-
-double remaining_ttl(const queue::Queue& queue, const queue::QueuedMessage& message, double now) {
-  return queue.ttl_of(message) - (now - message.record.submitted_at);
-}
-
-// An envelope read to its end, with nothing more to say.
-queue::EnvelopeOutcome consumed(size_t used) {
-  queue::EnvelopeOutcome outcome;
-  outcome.used = used;
-  return outcome;
-}
-
-// ... whose transmission's ACK waits on `condition`.
-queue::EnvelopeOutcome taken_only_if(size_t used, std::shared_ptr<std::atomic<bool>> condition) {
-  queue::EnvelopeOutcome outcome = consumed(used);
-  outcome.ack_only_if = std::move(condition);
-  return outcome;
-}
 
 queue::RoutedForm hold() {
   queue::RoutedForm form;
@@ -50,7 +24,7 @@ queue::RoutedForm hold() {
 }  // namespace
 
 Forwarder::Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vector<std::string> links,
-                     const dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock,
+                     dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock,
                      double custody_ttl_s, PostToCore post)
     : table_(config, links, own_id),
       own_id_(own_id),
@@ -73,10 +47,16 @@ Forwarder::Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vecto
     throw std::invalid_argument("routing.envelope_id " + std::to_string(envelope_id_) + " is the DCCL id of " +
                                 taken->name + ": choose another envelope_id");
   }
+  // And none loaded later (LoadDefinitions) may take it either.
+  codec.reserve_id(static_cast<int>(envelope_id_), "routing.envelope_id (the routing envelope)");
   if (hop_limit_ < 1 || hop_limit_ > kMaxHopLimit) {
     throw std::invalid_argument("routing.hop_limit " + std::to_string(hop_limit_) + " is not in 1..15");
   }
   if (max_custody_ == 0) throw std::invalid_argument("routing.max_custody must be at least 1");
+  // What this node delivered before a restart (a SIGKILL included).
+  for (const queue::RoutedIdentity& r : queues_.routed_delivered()) {
+    delivered_.remember({static_cast<uint16_t>(r.origin), static_cast<uint16_t>(r.seq)}, r.forget_after);
+  }
 }
 
 const std::string& Forwarder::link_name(int link) const {
@@ -85,7 +65,7 @@ const std::string& Forwarder::link_name(int link) const {
 }
 
 size_t Forwarder::held() const {
-  size_t n = pending_.size();
+  size_t n = pending_.size() + pending_receipts_;
   for (const queue::Queue* queue : queues_.queues()) {
     if (is_custody(queue->type())) n += queue->size();
   }
@@ -93,7 +73,6 @@ size_t Forwarder::held() const {
 }
 
 bool Forwarder::holds(const MessageIdentity& identity) const {
-  if (pending_.count(identity) > 0) return true;
   for (const queue::Queue* queue : queues_.queues()) {
     if (!is_custody(queue->type())) continue;
     for (const queue::QueuedMessage& m : queue->messages()) {
@@ -110,10 +89,31 @@ void Forwarder::heard(int link, int32_t src, double now) {
   table_.heard(src, link_name(link), now);
 }
 
+void Forwarder::acked_by(int link, int32_t src, double now) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  table_.heard(src, link_name(link), now, /*two_way=*/true);
+}
+
+void Forwarder::set_acks_in_hardware(int link, bool in_hardware) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (in_hardware) {
+    hardware_ack_links_.insert(link);
+  } else {
+    hardware_ack_links_.erase(link);
+  }
+}
+
 queue::EnvelopeOutcome Forwarder::on_envelope(std::string_view rest, int32_t transmission_src,
                                               int32_t transmission_dest, int link,
                                               std::optional<std::string_view> link_figures, double now) {
   ACOMMS_ASSERT_CORE_THREAD();
+  if (unwrapping_) {
+    // Inside a delivered envelope's payload: whoever wrapped it there is
+    // not the node that handed it over; nothing in it is acted on.
+    ++stats_.malformed;
+    spdlog::warn("route: an envelope inside an envelope's payload (from node {}): not acted on", transmission_src);
+    return {};
+  }
   size_t used = 0;
   std::string error;
   std::optional<Envelope> e = decode_envelope(rest, envelope_id_, &used, &error);
@@ -131,40 +131,46 @@ queue::EnvelopeOutcome Forwarder::on_envelope(std::string_view rest, int32_t tra
     ++stats_.overheard;
     return consumed(used);
   }
-  return take_custody(std::move(*e), used, now);
+  return take_custody(std::move(*e), used, link, now);
 }
 
 queue::EnvelopeOutcome Forwarder::deliver_here(const Envelope& e, size_t used, int link,
                                                std::optional<std::string_view> link_figures, double now) {
-  for (auto it = delivered_.begin(); it != delivered_.end();) {
-    it = it->second < now ? delivered_.erase(it) : std::next(it);
-  }
-  if (delivered_.count(e.identity()) > 0) {
+  if (delivered_.contains(e.identity(), now)) {
     ++stats_.duplicates;
     spdlog::debug("route: message {}/{} from node {} arrived again: dropped", e.origin, e.seq, e.origin);
     return consumed(used);
   }
+  const double forget_after = now + e.ttl_s + kClockSkewS;
   if (starts_envelope(e.payload, envelope_id_)) {
-    ++stats_.malformed;
-    spdlog::warn("route: envelope {}/{} holds another envelope: dropped", e.origin, e.seq);
+    // Routing's own payload: a receipt for this node, or nothing valid.
+    std::optional<Receipt> receipt = decode_receipt(e.payload, envelope_id_);
+    if (!receipt) {
+      ++stats_.malformed;
+      spdlog::warn("route: envelope {}/{} holds another envelope: dropped", e.origin, e.seq);
+      return consumed(used);
+    }
+    delivered_.remember(e.identity(), forget_after);
+    on_receipt(e, *receipt);
     return consumed(used);
   }
-  if (delivered_.size() >= kMaxRemembered) delivered_.erase(delivered_.begin());
-  delivered_[e.identity()] = now + e.ttl_s + kClockSkewS;
+  delivered_.remember(e.identity(), forget_after);
   ++stats_.delivered;
   queue::EnvelopeOutcome outcome = consumed(used);
   unwrapping_ = true;
   try {
-    outcome.delivered = queues_.receive(e.payload, e.origin, link_figures, link, own_id_);
+    outcome.delivered = queues_.receive_routed(e.payload, e.origin, e.seq, forget_after, link_figures, link);
   } catch (...) {
     unwrapping_ = false;
     throw;
   }
   unwrapping_ = false;
+  // The end-to-end ack: back to the origin by whatever route leads there.
+  if (e.origin != own_id_) originate_receipt(e.origin, {ReceiptKind::kDelivered, e.seq}, e.value_tenths, now);
   return outcome;
 }
 
-queue::EnvelopeOutcome Forwarder::take_custody(Envelope e, size_t used, double now) {
+queue::EnvelopeOutcome Forwarder::take_custody(Envelope e, size_t used, int link, double now) {
   if (e.hops >= e.hop_limit) {
     ++stats_.hop_limit_dropped;
     spdlog::warn("route: message {}/{} for node {} dropped after {} hops (its limit: a routing loop?)", e.origin,
@@ -175,20 +181,37 @@ queue::EnvelopeOutcome Forwarder::take_custody(Envelope e, size_t used, double n
     ++stats_.expired_dropped;
     spdlog::warn("route: message {}/{} for node {} arrived with no ttl left: dropped", e.origin, e.seq,
                  e.destination);
+    report_expired(e, now);
     return consumed(used);
+  }
+  if (auto it = pending_.find(e.identity()); it != pending_.end()) {
+    // A resend while the first copy is being stored: ACKed only if that
+    // store succeeds, as the first is.
+    ++stats_.custody_copies;
+    return taken_only_if(used, it->second);
   }
   if (holds(e.identity())) {
     ++stats_.custody_copies;  // a resend whose ACK was lost: ours already
     return consumed(used);
   }
   if (held() >= max_custody_) {
-    ++stats_.custody_refused;
-    // Once per burst: the previous hop resends every slot while it lasts.
-    if (!refusing_) spdlog::warn("route: custody of message {}/{} for node {} refused: {} held (routing.max_custody); the "
-                 "previous hop keeps it",
-                 e.origin, e.seq, e.destination, held());
-    refusing_ = true;
-    return taken_only_if(used, std::make_shared<std::atomic<bool>>(false));
+    if (hardware_ack_links_.count(link) == 0) {
+      ++stats_.custody_refused;
+      // Once per burst: the previous hop resends every slot while it lasts.
+      if (!refusing_) {
+        spdlog::warn("route: custody of message {}/{} for node {} refused: {} held (routing.max_custody); the "
+                     "previous hop keeps it",
+                     e.origin, e.seq, e.destination, held());
+      }
+      refusing_ = true;
+      return taken_only_if(used, std::make_shared<std::atomic<bool>>(false));
+    }
+    // The modem of this link has ACKed it already: the previous hop has
+    // forgotten it, so refusing would lose it.
+    ++stats_.custody_over_bound;
+    spdlog::warn("route: custody of message {}/{} for node {} taken over routing.max_custody ({} held): link {} ACKs "
+                 "in its modem, so the previous hop no longer has it",
+                 e.origin, e.seq, e.destination, held(), link_name(link));
   }
   refusing_ = false;
   ++e.hops;
@@ -201,26 +224,8 @@ queue::EnvelopeOutcome Forwarder::take_custody(Envelope e, size_t used, double n
   record.submitted_at = now;
   record.ttl_s = e.ttl_s;
   auto taken = std::make_shared<std::atomic<bool>>(true);
-  pending_.insert(identity);
   ++stats_.custody_taken;
-  queues_.journal_custody(record, [this, record, identity, taken](int64_t id, std::exception_ptr error) {
-    // The journal's thread: note a failure at once (the ACK's check runs
-    // later on the core), and hand the rest to the core.
-    if (error) taken->store(false);
-    post_([this, record, identity, taken, id, ok = !error] {
-      pending_.erase(identity);
-      if (!ok) {
-        spdlog::error("route: custody of message {}/{} not stored: no ACK, the previous hop sends again",
-                      identity.origin, identity.seq);
-        return;
-      }
-      queue::QueuedMessage message;
-      message.record = record;
-      message.record.id = id;
-      message.encoded = record.payload;
-      if (!queues_.accept_custody(std::move(message))) taken->store(false);
-    });
-  });
+  journal_into_custody(std::move(record), identity, taken);
   spdlog::debug("route: message {}/{} for node {} taken into custody (hop {})", e.origin, e.seq, e.destination,
                 e.hops);
   return taken_only_if(used, taken);
@@ -242,6 +247,11 @@ queue::RoutedForm Forwarder::outgoing(const queue::Queue& queue, const queue::Qu
     std::optional<Envelope> held = held_envelope(message, envelope_id_);
     if (!held) return hold();  // cannot happen: we wrote it
     e = std::move(*held);
+    // A receipt of ours (forwarder_receipts.cpp) takes its sequence from
+    // its journal id, as a submitted message does, when it first goes.
+    if (e.origin == own_id_ && starts_envelope(e.payload, envelope_id_)) {
+      e.seq = static_cast<uint16_t>(message.record.id & 0xffff);
+    }
   } else {
     if (message.encoded.empty() || message.encoded.size() > kMaxPayloadBytes) return hold();
     e.origin = static_cast<uint16_t>(own_id_);
@@ -264,8 +274,22 @@ std::string Forwarder::waiting(const queue::Queue& queue, const queue::QueuedMes
   ACOMMS_ASSERT_CORE_THREAD();
   const int32_t dest = message.record.dest;
   if (!is_custody(queue.type()) && (dest == queue::kBroadcast || dest == own_id_)) return "";
-  if (table_.next_hop(dest, clock_.now_seconds())) return "";
-  return "no route to node " + std::to_string(dest);
+  std::optional<NextHop> next = table_.next_hop(dest, clock_.now_seconds());
+  if (!next) return "no route to node " + std::to_string(dest);
+  // Its route leads through another node, but the envelope cannot carry it:
+  // it waits for ever (until its ttl), without holding back others.
+  if (!is_custody(queue.type()) && next->node != dest && message.encoded.size() > kMaxPayloadBytes) {
+    return "too large for the routing envelope (" + std::to_string(message.encoded.size()) + " bytes, at most " +
+           std::to_string(kMaxPayloadBytes) + ")";
+  }
+  return "";
+}
+
+// An end-to-end ack or expiry report in custody says so (queue ls).
+std::string Forwarder::receipt_json(const std::string& payload) const {
+  std::optional<Receipt> receipt = decode_receipt(payload, envelope_id_);
+  if (!receipt) return "";
+  return ",\"receipt\":\"" + std::string(to_string(receipt->kind)) + "\",\"about_seq\":" + std::to_string(receipt->seq);
 }
 
 std::string Forwarder::custody_json(const queue::Queue& queue, const queue::QueuedMessage& message) const {
@@ -274,7 +298,8 @@ std::string Forwarder::custody_json(const queue::Queue& queue, const queue::Queu
   if (!e) return "";
   return "{\"origin\":" + std::to_string(e->origin) + ",\"destination\":" + std::to_string(e->destination) +
          ",\"seq\":" + std::to_string(e->seq) + ",\"hops\":" + std::to_string(e->hops) + ",\"hop_limit\":" +
-         std::to_string(e->hop_limit) + ",\"message_bytes\":" + std::to_string(e->payload.size()) + "}";
+         std::to_string(e->hop_limit) + ",\"message_bytes\":" + std::to_string(e->payload.size()) +
+         receipt_json(e->payload) + "}";
 }
 
 std::optional<queue::QueuePolicy> Forwarder::custody_policy(const std::string& type) const {
@@ -287,7 +312,9 @@ std::optional<queue::QueuePolicy> Forwarder::custody_policy(const std::string& t
   policy.ack = true;
   policy.value_base = tenths / 10.0;
   policy.ttl_s = custody_ttl_s_;
-  policy.max_queue = max_custody_;
+  // Twice the bound: room for what a hardware-ACK link makes this node
+  // take over it (take_custody); past that even those are refused.
+  policy.max_queue = max_custody_ * 2;
   policy.newest_first = false;  // forwarded in the order they came
   policy.on_full = queue::QueuePolicy::OnFull::kRefuseNew;
   return policy;

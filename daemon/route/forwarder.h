@@ -25,19 +25,30 @@
 //    whose hops reached its limit, or whose ttl ran out, is dropped with a
 //    warning and acknowledged (the loop ends here). Custody messages go on
 //    as they came, with their remaining ttl restamped, to the route's next
-//    hop on its link; they wait while there is no route.
+//    hop on its link; they wait while there is no route. A held message
+//    never blocks a sendable one behind it (queue/frame_building.cpp).
+//    A link whose modem ACKs in hardware (Micro-Modem, Iridium: Driver::
+//    acks_in_hardware) cannot withhold its ACK: the previous hop forgets
+//    the message as the modem answers. There, full custody takes it over
+//    routing.max_custody (a soft bound, warned and counted) rather than
+//    lose it; only links with software ACKs (sim, udp, Micro-Modem FDP)
+//    leave a refused message with the previous hop.
 //  - Destination. An envelope for this node is unwrapped and received like
 //    any frame, from its origin, once per identity (origin, sequence): a
-//    second copy within its ttl is counted and dropped. Across a restart
-//    the queues' receive filter (same source and bytes within the type's
-//    window, refilled from the event log) keeps it once.
+//    second copy within its ttl is counted and dropped, after a restart
+//    too (the identity is journaled with the received event; delivered_
+//    identities.h). Then an end-to-end ack (route/receipt.h) goes back to
+//    the origin, routed and with custody like any message.
+//  - Expiry. A message whose ttl runs out in custody here (or that arrives
+//    with none left) is reported to its origin, if a route back exists now.
+//  - Origin. A receipt for this node is logged as an event of the message
+//    it is about: "delivered" (end-to-end ack), or "expired" with where;
+//    its hop ACK was "acked" ("hop ack from node 2").
 //  - Routes are learned: any frame from a node on a link (it is a
-//    neighbour there), and an envelope's origin through the node that
-//    handed it over (route/route_table.h).
-// Not (yet) done: end-to-end acks back along the reverse route, expiry
-// reports to the sender; a held custody message at the head of its queue
-// holds the ones behind it (one queue per priority level, oldest first).
-//
+//    neighbour there), an ACK from it, and an envelope's origin through the
+//    node that handed it over (route/route_table.h).
+// An envelope inside an envelope's payload is never acted on.
+
 // Threads: core thread only (queue::Routing's calls), but for the journal's
 // completion of a custody append, which posts to the core (PostToCore).
 
@@ -55,7 +66,10 @@
 #include "dccl/codec.h"
 #include "queue/queue_manager.h"
 #include "queue/routing.h"
+#include "route/delivered_identities.h"
+#include "route/end_to_end_ack.h"
 #include "route/envelope.h"
+#include "route/receipt.h"
 #include "route/route_table.h"
 
 namespace acomms::route {
@@ -74,6 +88,9 @@ struct ForwarderStats {
   uint64_t expired_dropped = 0;    // envelopes that arrived with no ttl left
   uint64_t malformed = 0;          // bytes that start like an envelope but are not one
   uint64_t overheard = 0;          // envelopes for others addressed to another next hop
+  uint64_t custody_over_bound = 0; // taken past max_custody: the modem had ACKed them
+  uint64_t receipts_sent = 0;      // end-to-end acks and expiry reports originated here
+  uint64_t receipts_received = 0;  // ... that reached this node, as the origin
 };
 
 class Forwarder final : public queue::Routing {
@@ -84,10 +101,11 @@ class Forwarder final : public queue::Routing {
   // the ttl a custody queue's priority grows over (the queues' default
   // ttl_s). Throws std::invalid_argument naming the routing field (routes,
   // hop_limit, envelope_id, max_custody) or the type whose DCCL id is the
-  // envelope's. `queues` and `codec` must outlive the forwarder; call
+  // envelope's, and reserves that id in `codec` (a type loaded later with
+  // it is refused). `queues` and `codec` must outlive the forwarder; call
   // queues.set_routing(this) before queues.restore().
   Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vector<std::string> links,
-            const dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock, double custody_ttl_s,
+            dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock, double custody_ttl_s,
             PostToCore post);
 
   const RouteTable& routes() const { return table_; }
@@ -103,22 +121,43 @@ class Forwarder final : public queue::Routing {
   const ForwarderStats& stats() const { return stats_; }
   // Messages held for others now: in custody queues or being journaled.
   size_t held() const;
+  // This node's messages sent wrapped and not yet heard of end to end.
+  const EndToEndAcks& awaiting_end_to_end() const { return awaiting_; }
+  // Whether a routed message (origin, seq) was delivered here and is
+  // remembered still.
+  bool delivered(const MessageIdentity& identity) { return delivered_.contains(identity, clock_.now_seconds()); }
 
   // queue::Routing
   uint32_t envelope_id() const override { return envelope_id_; }
   void heard(int link, int32_t src, double now) override;
+  void acked_by(int link, int32_t src, double now) override;
+  void set_acks_in_hardware(int link, bool in_hardware) override;
   queue::EnvelopeOutcome on_envelope(std::string_view rest, int32_t transmission_src, int32_t transmission_dest,
                                      int link, std::optional<std::string_view> link_figures, double now) override;
   queue::RoutedForm outgoing(const queue::Queue& queue, const queue::QueuedMessage& message,
                              const queue::DataRequest& request, double now) override;
   std::optional<queue::QueuePolicy> custody_policy(const std::string& type) const override;
+  std::string on_sent(const queue::Queue& queue, const queue::QueuedMessage& message, const queue::RoutedForm& form,
+                      double now) override;
+  std::string acked_detail(const queue::Queue& queue, const queue::QueuedMessage& message) override;
+  void expired(const queue::Queue& queue, const queue::QueuedMessage& message, double now) override;
 
  private:
+  // forwarder_receipts.cpp: a receipt about (origin, seq) from here to
+  // `to`, journaled into custody; one that came here.
+  void originate_receipt(int32_t to, Receipt receipt, uint8_t value_tenths, double now);
+  void on_receipt(const Envelope& e, const Receipt& receipt);
+  void report_expired(const Envelope& e, double now);
+  // Journals `record` (an envelope) into its custody queue; `taken` false
+  // when the commit fails.
+  void journal_into_custody(queue::JournalMessage record, MessageIdentity identity,
+                            std::shared_ptr<std::atomic<bool>> taken);
   queue::EnvelopeOutcome deliver_here(const Envelope& e, size_t used, int link,
                                       std::optional<std::string_view> link_figures, double now);
-  queue::EnvelopeOutcome take_custody(Envelope e, size_t used, double now);
+  queue::EnvelopeOutcome take_custody(Envelope e, size_t used, int link, double now);
   bool holds(const MessageIdentity& identity) const;
   const std::string& link_name(int link) const;
+  std::string receipt_json(const std::string& payload) const;
 
   RouteTable table_;
   int32_t own_id_;
@@ -132,8 +171,13 @@ class Forwarder final : public queue::Routing {
   uint32_t max_custody_;
   bool unwrapping_ = false;         // receiving an envelope's payload now
   bool refusing_ = false;           // custody refused since the last taken (logged once)
-  std::set<MessageIdentity> pending_;            // custody being journaled
-  std::map<MessageIdentity, double> delivered_;  // identity -> forget after (clock s)
+  // Custody being journaled: identity -> whether it is (still) taken. A
+  // copy arriving meanwhile is ACKed on the same condition.
+  std::map<MessageIdentity, std::shared_ptr<std::atomic<bool>>> pending_;
+  DeliveredIdentities delivered_;
+  EndToEndAcks awaiting_;
+  size_t pending_receipts_ = 0;  // receipts being journaled
+  std::set<int> hardware_ack_links_;
   ForwarderStats stats_;
 };
 

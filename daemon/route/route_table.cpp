@@ -78,11 +78,16 @@ std::optional<NextHop> RouteTable::next_hop(int32_t dest, double now) const {
   return std::nullopt;
 }
 
-void RouteTable::heard(int32_t node, const std::string& link, double now) {
+void RouteTable::heard(int32_t node, const std::string& link, double now, bool two_way) {
   ACOMMS_ASSERT_CORE_THREAD();
   if (!valid_id(node) || node == own_id_) return;
   for (StaticRoute& route : static_) {
     if (route.next.node == node && route.next.link == link) route.last_confirmed = now;
+  }
+  auto it = learned_.find(node);
+  if (it != learned_.end() && it->second.next.source == RouteSource::kLearnedRelay && fresh(it->second, now) &&
+      !two_way && ++it->second.direct_hearings < kDirectHearings) {
+    return;  // overheard: the relay that works stays until the node is heard again
   }
   learned_[node] = {{node, link, RouteSource::kLearnedDirect}, now};
 }

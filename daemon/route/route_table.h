@@ -17,7 +17,12 @@
 //  - learned: a node heard on a link is reachable there directly (next hop
 //    itself); a routed message from origin O handed over by neighbour N on
 //    link L says O is reachable through N on L, unless O was heard directly
-//    within the age limit (a direct neighbour beats a relay). A learned
+//    within the age limit (a direct neighbour beats a relay). A relayed
+//    route that still works is not given up for one packet overheard from
+//    the far node (at the fringe of range it proves nothing): it turns
+//    direct after kDirectHearings receptions from that node since the
+//    relay was last confirmed, or at once on an ACK from it to this node
+//    (both ways work). A learned
 //    route is used until `learned_max_age_s` after it was last confirmed;
 //    older ones are still listed (stale), never chosen.
 // Static routes are tried before learned ones: the operator's plan wins.
@@ -64,6 +69,8 @@ struct RouteEntry {
 class RouteTable {
  public:
   inline static constexpr double kDefaultLearnedMaxAgeS = 1800;
+  // Receptions from a node that turn a fresh relayed route to it direct.
+  inline static constexpr int kDirectHearings = 3;
 
   // `links`: the node's link names, first is the default. Throws
   // std::invalid_argument naming routing.route[i] and the field when a
@@ -75,9 +82,10 @@ class RouteTable {
   // The next hop for `dest` at `now`, or nullopt: the message waits.
   std::optional<NextHop> next_hop(int32_t dest, double now) const;
 
-  // Node `node` was heard on `link` (any reception from it): it is a
-  // neighbour there, and static routes through it on that link are confirmed.
-  void heard(int32_t node, const std::string& link, double now);
+  // Node `node` was heard on `link` (any reception from it; `two_way`: an
+  // ACK from it to this node): it is a neighbour there, and static routes
+  // through it on that link are confirmed.
+  void heard(int32_t node, const std::string& link, double now, bool two_way = false);
   // A routed message from `origin` was handed over by neighbour `via` on
   // `link`: `origin` is reachable through `via` there.
   void heard_through(int32_t origin, int32_t via, const std::string& link, double now);
@@ -98,6 +106,7 @@ class RouteTable {
   struct Learned {
     NextHop next;
     double last_confirmed;
+    int direct_hearings = 0;  // a relayed route: receptions from the node itself since
   };
   bool fresh(const Learned& learned, double now) const { return now - learned.last_confirmed <= learned_max_age_s_; }
 

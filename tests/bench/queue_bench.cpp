@@ -36,6 +36,7 @@ class NullJournal final : public queue::MessageJournal {
   std::vector<queue::JournalMessage> load() override { return {}; }
   std::vector<queue::QueueEvent> received_since(double) override { return {}; }
   std::vector<queue::QueueEvent> authenticated_since(double) override { return {}; }
+  std::vector<queue::RoutedIdentity> routed_since(double) override { return {}; }
   void flush() override {}
   int64_t last_received_seq() override { return 0; }
   void when_committed(Committed committed) override { committed(nullptr); }

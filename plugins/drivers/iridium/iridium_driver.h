@@ -99,6 +99,8 @@ class IridiumDriver final : public link::Driver {
   link::DriverCounters counters() const override;
   // "Iridium 300234010000001: signal 3/5, service; last session ...".
   std::string modem() const override;
+  // An MT message is the gateway's to deliver once sent: no software ACK.
+  bool acks_in_hardware() const override { return true; }
 
   bool ready() const { return state_ == State::kIdle || state_ == State::kBusy; }
   const IridiumStats& stats() const { return stats_; }

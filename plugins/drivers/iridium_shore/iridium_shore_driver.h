@@ -80,6 +80,7 @@ class IridiumShoreDriver final : public link::Driver {
   double sound_speed() const override { return 0; }
   link::DriverCounters counters() const override { return counters_; }
   std::string modem() const override { return "Iridium DirectIP shore endpoint"; }
+  bool acks_in_hardware() const override { return true; }
 
   const IridiumShoreStats& stats() const { return stats_; }
   uint16_t mo_port() const { return server_.local_port(); }

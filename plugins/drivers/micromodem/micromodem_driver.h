@@ -90,6 +90,8 @@ class MicroModemDriver final : public link::Driver {
   link::DriverCounters counters() const override;
   // "MM2 2.0.27087" once a $CAREV said so.
   std::string modem() const override;
+  // The modem ACKs in hardware, but for FDP data (software ACKs, §6).
+  bool acks_in_hardware() const override { return !settings_.fdp_data; }
 
   int32_t modem_id() const { return settings_.id; }
   // Start-up finished and no reboot since.

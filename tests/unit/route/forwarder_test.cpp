@@ -61,12 +61,35 @@ TEST_F(ForwarderTest, ConfigMistakesAreRefusedNamingTheField) {
   expect_refused("route { dest: 3 next_hop: 2 link: \"sat\" }", "routing.route[0].link \"sat\"");
 }
 
+TEST_F(ForwarderTest, ATypeLoadedLaterWithTheEnvelopeIdIsRefusedNamingIt) {
+  Forwarder forwarder = make("envelope_id: 400");
+  std::ofstream(dir_ / "late.proto") << R"(syntax = "proto2";
+import "dccl/option_extensions.proto";
+package late;
+message Clash {
+  option (dccl.msg) = { codec_version: 4 id: 400 max_bytes: 8 };
+  required int32 x = 1 [(dccl.field) = { min: 0 max: 10 }];
+}
+)";
+  try {
+    codec_.load((dir_ / "late.proto").string());
+    ADD_FAILURE() << "late.Clash loaded with the envelope's id";
+  } catch (const dccl::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("late.Clash: DCCL id 400 is reserved for routing.envelope_id"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(codec_.find_type("late.Clash"), nullptr);
+}
+
 TEST_F(ForwarderTest, CustodyQueuesTakeTheirPriorityFromTheirName) {
   Forwarder forwarder = make("max_custody: 7");
   auto policy = forwarder.custody_policy("acomms.route.Custody.v15");
   ASSERT_TRUE(policy);
   EXPECT_DOUBLE_EQ(policy->value_base, 1.5);
-  EXPECT_EQ(policy->max_queue, 7u);
+  // Twice routing.max_custody: the room a link whose modem ACKs in
+  // hardware may push custody into (Forwarder::take_custody).
+  EXPECT_EQ(policy->max_queue, 14u);
   EXPECT_DOUBLE_EQ(policy->ttl_s, 1800);
   EXPECT_FALSE(policy->newest_first);
   EXPECT_EQ(policy->on_full, queue::QueuePolicy::OnFull::kRefuseNew);

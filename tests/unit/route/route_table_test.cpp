@@ -63,12 +63,30 @@ TEST(RouteTableTest, ARelayedOriginIsReachableThroughItsRelayButADirectNeighbour
   RouteTable table(parse("learned_max_age_s: 100"), kLinks, 1);
   table.heard_through(12, 2, "sat", 10);
   EXPECT_EQ(table.next_hop(12, 20), (NextHop{2, "sat", RouteSource::kLearnedRelay}));
+  // Heard itself, again and again (RouteTable::kDirectHearings): direct.
+  table.heard(12, "acoustic", 28);
+  table.heard(12, "acoustic", 29);
   table.heard(12, "acoustic", 30);
   EXPECT_EQ(table.next_hop(12, 40), (NextHop{12, "acoustic", RouteSource::kLearnedDirect}));
   table.heard_through(12, 2, "sat", 50);  // the relay again, the direct hearing fresh: kept
   EXPECT_EQ(table.next_hop(12, 60)->source, RouteSource::kLearnedDirect);
   table.heard_through(12, 2, "sat", 200);  // the direct hearing aged: the relay takes over
   EXPECT_EQ(table.next_hop(12, 210), (NextHop{2, "sat", RouteSource::kLearnedRelay}));
+}
+
+TEST(RouteTableTest, OnePacketOverheardFromARelayedNodeDoesNotTurnItsRouteDirect) {
+  RouteTable table(parse("learned_max_age_s: 100"), kLinks, 1);
+  table.heard_through(12, 2, "sat", 10);
+  table.heard(12, "acoustic", 20);  // once, at the fringe of range
+  table.heard(12, "acoustic", 21);
+  EXPECT_EQ(table.next_hop(12, 22), (NextHop{2, "sat", RouteSource::kLearnedRelay}));
+  table.heard_through(12, 2, "sat", 30);  // the relay confirmed: the count starts again
+  table.heard(12, "acoustic", 31);
+  table.heard(12, "acoustic", 32);
+  EXPECT_EQ(table.next_hop(12, 33)->source, RouteSource::kLearnedRelay);
+  // An ACK from it to this node: both ways work, direct at once.
+  table.heard(12, "acoustic", 34, /*two_way=*/true);
+  EXPECT_EQ(table.next_hop(12, 35), (NextHop{12, "acoustic", RouteSource::kLearnedDirect}));
 }
 
 TEST(RouteTableTest, StaticRoutesWinOverLearnedAndAreConfirmedByTheirNextHop) {

@@ -1,0 +1,139 @@
+// The Forwarder's receipts (route/receipt.h): end-to-end acks and expiry
+// reports sent from where a message ended, and what its origin makes of
+// them; and the events a routed message's sends and hop ACKs carry. Kept
+// apart from forwarding itself (forwarder.cpp). Core thread only, but for
+// the journal's completion in journal_into_custody.
+#include <spdlog/spdlog.h>
+
+#include "core/core_thread.h"
+#include "route/forwarder.h"
+#include "route/forwarder_internal.h"
+
+namespace acomms::route {
+
+using namespace internal;
+
+void Forwarder::journal_into_custody(queue::JournalMessage record, MessageIdentity identity,
+                                     std::shared_ptr<std::atomic<bool>> taken) {
+  // A receipt of ours (no taken flag) has no identity yet: counted apart.
+  const bool receipt = taken == nullptr;
+  if (receipt) {
+    ++pending_receipts_;
+  } else {
+    pending_[identity] = taken;
+  }
+  queues_.journal_custody(record, [this, record, identity, taken, receipt](int64_t id, std::exception_ptr error) {
+    // The journal's thread: note a failure at once (the ACK's check runs
+    // later on the core), and hand the rest to the core.
+    if (error && taken) taken->store(false);
+    post_([this, record, identity, taken, receipt, id, ok = !error] {
+      if (receipt) {
+        --pending_receipts_;
+      } else {
+        pending_.erase(identity);
+      }
+      if (!ok) {
+        if (receipt) {
+          spdlog::error("route: {} for node {} not stored: not sent", record.type, record.dest);
+        } else {
+          spdlog::error("route: custody of message {}/{} not stored: no ACK, the previous hop sends again",
+                        identity.origin, identity.seq);
+        }
+        return;
+      }
+      queue::QueuedMessage message;
+      message.record = record;
+      message.record.id = id;
+      message.encoded = record.payload;
+      if (!queues_.accept_custody(std::move(message)) && taken) taken->store(false);
+    });
+  });
+}
+
+void Forwarder::originate_receipt(int32_t to, Receipt receipt, uint8_t value_tenths, double now) {
+  if (held() >= max_custody_) {
+    spdlog::warn("route: {} receipt of message {}/{} not sent: custody full (routing.max_custody)",
+                 to_string(receipt.kind), to, receipt.seq);
+    return;
+  }
+  Envelope e;
+  e.origin = static_cast<uint16_t>(own_id_);
+  e.destination = static_cast<uint16_t>(to);
+  e.seq = 0;  // its journal id's, when it first goes (outgoing)
+  e.hops = 1;
+  e.hop_limit = static_cast<uint8_t>(hop_limit_);
+  e.ttl_s = ttl_to_seconds(custody_ttl_s_);
+  e.value_tenths = value_tenths;  // as urgent as the message it is about
+  e.payload = encode_receipt(receipt, envelope_id_);
+  queue::JournalMessage record;
+  record.type = custody_queue(value_tenths);
+  record.payload = encode_envelope(e, envelope_id_);
+  record.src = own_id_;
+  record.dest = to;
+  record.submitted_at = now;
+  record.ttl_s = custody_ttl_s_;
+  ++stats_.receipts_sent;
+  spdlog::debug("route: {} receipt of message {}/{} to node {}", to_string(receipt.kind), to, receipt.seq, to);
+  journal_into_custody(std::move(record), {}, nullptr);
+}
+
+void Forwarder::report_expired(const Envelope& e, double now) {
+  if (e.origin == own_id_ || starts_envelope(e.payload, envelope_id_)) return;  // ours, or a receipt: no report
+  if (!table_.next_hop(e.origin, now)) {
+    spdlog::info("route: message {}/{} expired here; no route back to node {}: not reported", e.origin, e.seq,
+                 e.origin);
+    return;
+  }
+  originate_receipt(e.origin, {ReceiptKind::kExpired, e.seq}, e.value_tenths, now);
+}
+
+void Forwarder::on_receipt(const Envelope& e, const Receipt& receipt) {
+  ++stats_.receipts_received;
+  std::optional<RoutedSend> send = awaiting_.take(receipt.seq);
+  if (!send) {
+    // Sent before this node restarted (the notes are in memory), or twice.
+    spdlog::info("route: {} receipt from node {} for message seq {}, which this node no longer knows",
+                 to_string(receipt.kind), e.origin, receipt.seq);
+    return;
+  }
+  queue::JournalMessage message;
+  message.id = send->message_id;
+  message.type = send->type;
+  message.src = own_id_;
+  message.dest = send->dest;
+  const bool delivered = receipt.kind == ReceiptKind::kDelivered;
+  const std::string detail = delivered ? "delivered to node " + std::to_string(e.origin) + " (end-to-end ack)"
+                                       : "expired at node " + std::to_string(e.origin);
+  if (delivered && e.origin != send->dest) {
+    spdlog::warn("route: end-to-end ack of message {} from node {}, not its destination {}", send->message_id,
+                 e.origin, send->dest);
+  }
+  queues_.report_routed(send->type, delivered ? queue::QueueEventKind::kDelivered : queue::QueueEventKind::kExpired,
+                        message, detail);
+}
+
+std::string Forwarder::on_sent(const queue::Queue& queue, const queue::QueuedMessage& message,
+                               const queue::RoutedForm& form, double now) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (!is_custody(queue.type())) {
+    awaiting_.sent({message.record.id, queue.type(), message.record.dest, form.next_hop, now});
+  }
+  return "to node " + std::to_string(message.record.dest) + " through node " + std::to_string(form.next_hop);
+}
+
+std::string Forwarder::acked_detail(const queue::Queue& queue, const queue::QueuedMessage& message) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (is_custody(queue.type())) return "hop ack: custody passed on";
+  if (!awaiting_.hop_acked(message.record.id)) return "";
+  const RoutedSend* send = awaiting_.find(static_cast<uint16_t>(message.record.id & 0xffff));
+  return "hop ack from node " + std::to_string(send->next_hop) + ": with next hop, awaiting the end-to-end ack of node " +
+         std::to_string(send->dest);
+}
+
+void Forwarder::expired(const queue::Queue& queue, const queue::QueuedMessage& message, double now) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  if (!is_custody(queue.type())) return;
+  if (std::optional<Envelope> e = held_envelope(message, envelope_id_)) report_expired(*e, now);
+}
+
+}  // namespace acomms::route
