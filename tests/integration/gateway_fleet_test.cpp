@@ -386,9 +386,10 @@ TEST_F(GatewayFleetTest, ShoreAndVehiclesExchangeEverythingOnceThroughABuoyKille
   const HopDelay a_wait = figures.relay_wait.count(kVehicleA) ? figures.relay_wait.at(kVehicleA) : HopDelay{};
   EXPECT_LE(a_wait.max_s, kRelayWaitBoundS)
       << "vehicle A held custody message " << (a_wait.n ? figures.relay_worst_id.at(kVehicleA) : 0) << " " << a_wait.max_s
-      << " s before sending it on (bound " << kRelayWaitBoundS << " s, 3 acoustic cycles): a custody message for one "
-      << "next hop at the head of the custody queue holds those behind it whenever the slot goes to another next "
-      << "hop, and the custody queue's priority grows over queue.defaults.ttl_s, not the messages' own ttl";
+      << " s before sending it on (bound " << kRelayWaitBoundS << " s, 3 acoustic cycles): the custody message "
+      << "at the head of A's custody queue, for one next hop, holds the ones behind it for the other whenever A's "
+      << "transmission goes to the other next hop (a transmission takes only the run of custody messages at the "
+      << "queue's head that share its next hop)";
 }
 
 }  // namespace
