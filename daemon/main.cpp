@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 #include <signal.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -117,6 +118,9 @@ int main(int argc, char** argv) {
   if (print_digest) {
     // The config's own definitions (not those a running node may have been
     // given with LoadDefinitions: acommsctl status shows a node's digest).
+    // Only the digest on stdout (it is pasted into a fleet file); what the
+    // codec logs goes to stderr.
+    spdlog::set_default_logger(spdlog::stderr_color_mt("acommsd"));
     try {
       std::unique_ptr<acomms::dccl::Codec> codec = acomms::node::make_codec(config.dccl());
       auto digests = acomms::node::config_digests(config, *codec);

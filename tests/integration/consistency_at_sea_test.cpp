@@ -68,7 +68,8 @@ class ConsistencyAtSea : public ::testing::Test {
 
   // What node `id` has heard node `other` announce (empty digest: nothing).
   v1::NodeConsistency heard(int id, int other) {
-    for (const v1::NodeConsistency& node : status(id).consistency()) {
+    const v1::Status now = status(id);  // kept: the loop reads into it
+    for (const v1::NodeConsistency& node : now.consistency()) {
       if (node.node() == other) return node;
     }
     return {};
@@ -136,6 +137,12 @@ TEST_F(ConsistencyAtSea, NodesFromTheSameDefinitionsAgree) {
   // The announce decoded where it was heard: no frame counted as malformed.
   EXPECT_EQ(link_status(1).counters().malformed_frames(), 0u);
   EXPECT_EQ(link_status(2).counters().malformed_frames(), 0u);
+  // What `acommsd --print-digest` prints for a node's config (all of its
+  // stdout, to paste into a fleet file) is what the running node reports.
+  RunResult printed = run(ACOMMSD_BINARY, {"--config", (net_.dir() / "vehicle.conf").string(), "--print-digest"},
+                          (net_.dir() / "print-digest").string());
+  EXPECT_EQ(printed.exit_code, 0) << printed.err;
+  EXPECT_EQ(printed.out, one.consistency_digest() + "\n") << printed.err;
   std::printf("test wall time %.1f s\n", seconds_since_start());
 }
 
