@@ -15,7 +15,7 @@ ConsistencyWatch::ConsistencyWatch(const v1::ConsistencyConfig& config, const dc
                                    std::vector<Link> links)
     : codec_(codec),
       links_(std::move(links)),
-      enabled_(!config.has_enabled() || config.enabled()),
+      enabled_(config.has_enabled() && config.enabled()),
       interval_s_(config.has_announce_interval_s() ? config.announce_interval_s() : kDefaultAnnounceIntervalS),
       announce_id_(config.has_announce_id() ? config.announce_id() : kDefaultAnnounceId) {
   if (announce_id_ < 128 || announce_id_ > 32767) {

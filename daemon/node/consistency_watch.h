@@ -60,6 +60,8 @@ class ConsistencyWatch final : public queue::Piggyback {
     const mac::Mac* mac;
   };
 
+  // Off unless consistency.enabled is true (a bare DCCL decoder at a peer,
+  // e.g. a non-acommsd shore, throws at the announce's unknown id).
   // Throws std::invalid_argument naming the consistency field: an
   // announce_id outside 128..32767 or the DCCL id of a loaded type, an
   // announce_interval_s below 1, an expected_digest that is not 8 hex

@@ -23,7 +23,7 @@ constexpr double kSlotSeconds = 3;
 constexpr double kCycleSeconds = 2 * kSlotSeconds;
 // Short, so that a test sees a second announce within a cycle or two (the
 // default is 600 s).
-const std::string kConsistency = "consistency { announce_interval_s: 2 }\n";
+const std::string kConsistency = "consistency { enabled: true announce_interval_s: 2 }\n";
 
 class ConsistencyAtSea : public ::testing::Test {
  protected:

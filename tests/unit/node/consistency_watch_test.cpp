@@ -66,7 +66,7 @@ class ConsistencyWatchTest : public ::testing::Test {
 
   std::unique_ptr<ConsistencyWatch> watch(const std::string& consistency) {
     v1::ConsistencyConfig config =
-        core::parse_config("consistency { " + consistency + " }", "test.conf").consistency();
+        core::parse_config("consistency { enabled: true " + consistency + " }", "test.conf").consistency();
     return std::make_unique<ConsistencyWatch>(config, *codec_,
                                               std::vector<ConsistencyWatch::Link>{{"acoustic", &mac_config_, &mac_}});
   }
@@ -89,7 +89,8 @@ TEST_F(ConsistencyWatchTest, WaitsForRoomAndIsNeverSentDisabled) {
   auto w = watch("");
   EXPECT_EQ(w->take(0, kAnnounceBytes - 1, 1000), "");  // no room: still due
   EXPECT_EQ(w->take(0, kAnnounceBytes, 1001).size(), kAnnounceBytes);
-  auto off = watch("enabled: false");
+  auto off = std::make_unique<ConsistencyWatch>(v1::ConsistencyConfig(), *codec_,
+                                                std::vector<ConsistencyWatch::Link>{{"acoustic", &mac_config_, &mac_}});
   EXPECT_EQ(off->take(0, 32, 1000), "");
 }
 
@@ -154,7 +155,8 @@ TEST_F(ConsistencyWatchTest, AMalformedAnnounceIsCountedAndUsesNoBytes) {
 }
 
 TEST_F(ConsistencyWatchTest, DisabledReadsPastAnAnnounceWithoutRecordingIt) {
-  auto w = watch("enabled: false");
+  auto w = std::make_unique<ConsistencyWatch>(v1::ConsistencyConfig(), *codec_,
+                                              std::vector<ConsistencyWatch::Link>{{"acoustic", &mac_config_, &mac_}});
   EXPECT_EQ(w->on_received(encode_announce(1, kDefaultAnnounceId), 2, 0, 1000), kAnnounceBytes);
   EXPECT_TRUE(w->heard().empty());
 }
