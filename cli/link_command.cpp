@@ -3,6 +3,7 @@
 #include <google/protobuf/util/json_util.h>
 
 #include <charconv>
+#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "api_client.h"
+#include "consistency_text.h"
 #include "global_options.h"
 #include "link_calibrate_command.h"
 #include "link_extra_command.h"
@@ -94,6 +96,9 @@ void print_status(const v1::LinkStatusResponse& link) {
     for (const auto& [kind, count] : kinds) text += (text.empty() ? "" : ", ") + kind + " " + std::to_string(count);
     std::printf("bad input:    %s\n", text.c_str());
   }
+  // Fleet consistency on this link: its digest and the nodes heard on it.
+  const double now_s = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  print_consistency("", link.consistency_digest(), link.consistency(), now_s);
 }
 
 void run_status(const GlobalOptions& global, const std::string& name) {
@@ -201,13 +206,15 @@ void add_link_command(CLI::App& app, const GlobalOptions& global) {
   link->require_subcommand(1);
   link->footer("Example:\n  acommsctl link status");
 
-  CLI::App* status = link->add_subcommand("status", "Modem driver state, MAC cycle, known nodes, counters");
+  CLI::App* status = link->add_subcommand("status", "Modem driver state, MAC cycle, known nodes, counters, fleet consistency");
   status->add_option("NAME", status_link, "One link by name (config `link { name: ... }`); default: every link");
   status->footer(
       "Shows, for each of the node's links (or the one named), the modem driver (running, or restarting "
       "after a failure), whether the link is enabled and its cost, the MAC and its cycle of slots, the "
       "nodes it knows, and link counters (transmissions, acks, messages delivered, duplicates, malformed "
-      "frames, packets lost to half-duplex and to collisions).\n\n"
+      "frames, packets lost to half-duplex and to collisions), and fleet consistency on the link: this "
+      "node's digest there and, per node heard announcing one, whether it agrees and since when it has "
+      "not (README \"Consistency across a fleet\").\n\n"
       "Examples:\n  acommsctl link status --json\n  acommsctl link status iridium");
   status->callback([&global] { run_status(global, status_link); });
 

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 #include <signal.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -17,6 +18,8 @@
 #include "core/fleet.h"
 #include "core/node_links.h"
 #include "core/logging.h"
+#include "node/codec_setup.h"
+#include "node/consistency_digest.h"
 #include "node/daemon.h"
 #include "link/slot_check.h"
 #include "telemetry/node_settings.h"
@@ -65,6 +68,7 @@ int main(int argc, char** argv) {
   std::string fleet_path;
   std::string node_name;
   bool print_example = false;
+  bool print_digest = false;
   CLI::Option* config_option = app.add_option("-c,--config", config_path, "Config file (protobuf text format)");
   CLI::Option* fleet_option =
       app.add_option("--fleet", fleet_path, "Fleet file (README \"Fleet configuration\"); run the node --node of it")
@@ -75,6 +79,9 @@ int main(int argc, char** argv) {
   app.add_option("--socket", socket, "Unix socket for the API (overrides the config)");
   app.add_flag("--example-config", print_example, "Print a complete, commented config and exit");
   app.add_option("--check-config", check_path, "Validate a config file and exit");
+  app.add_flag("--print-digest", print_digest,
+               "Print the config's consistency digest (its DCCL definitions and MAC cycle; one line per link when "
+               "there are several: NAME DIGEST) and exit, e.g. acommsd --config vehicle.conf --print-digest");
   app.set_version_flag("--version", std::string("acommsd ") + ACOMMS_VERSION);
   try {
     app.parse(argc, argv);
@@ -118,6 +125,25 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::cerr << "acommsd: " << e.what() << "\n";
     return kExitStartupError;
+  }
+
+  if (print_digest) {
+    // The config's own definitions (not those a running node may have been
+    // given with LoadDefinitions: acommsctl status shows a node's digest).
+    // Only the digest on stdout (it is pasted into a fleet file); what the
+    // codec logs goes to stderr.
+    spdlog::set_default_logger(spdlog::stderr_color_mt("acommsd"));
+    try {
+      std::unique_ptr<acomms::dccl::Codec> codec = acomms::node::make_codec(config.dccl());
+      auto digests = acomms::node::config_digests(config, *codec);
+      for (const auto& [link, digest] : digests) {
+        std::cout << (digests.size() == 1 ? "" : link + " ") << acomms::node::digest_hex(digest) << "\n";
+      }
+      return 0;
+    } catch (const std::exception& e) {
+      std::cerr << "acommsd: " << e.what() << "\n";
+      return kExitStartupError;
+    }
   }
 
   acomms::core::configure_logging(config.log_level());

@@ -166,6 +166,9 @@ void LinkController::on_data_request(v1::ModemTransmission* transmission) {
   request.max_num_frames = frames_for_slot(*transmission);
   request.ack_requested = transmission->ack_requested();
   request.link = options_.link_index;
+  // A slot's transmission goes even when empty; a slotless driver's (a
+  // satellite session) only for what the queues give.
+  request.in_slot = transmission->slot_seconds() > 0;
   if (options_.choice != nullptr) {
     request.may_carry = [this](const std::string& type, int32_t dest, double priority) {
       return options_.choice->may_carry(options_.link_index, type, dest, priority, now_s());

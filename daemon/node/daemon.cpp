@@ -94,6 +94,7 @@ void Daemon::start() {
     throw std::runtime_error(e.what());
   }
   build_links();
+  build_consistency();
   build_telemetry(telemetry_stored);
   retention_ = std::make_unique<queue::EventLogRetention>(
       *writer_, *scheduler_, retention_policy(config_.store()), [queues = queues_.get()](double now) {
@@ -126,7 +127,11 @@ void Daemon::start() {
   }
   api_ = std::make_unique<service::AcommsService>(
       std::move(identity), service::Node{*codec_, *queues_, *submitter_, *core_, std::move(links), *definitions_,
-                                         *events_, subscribers_, *telemetry_, *track_, forwarder_.get()},
+                                         *events_, subscribers_, *telemetry_, *track_, forwarder_.get(),
+                                         [this](v1::Status* status) { consistency_->fill(status); },
+                                         [this](int link, v1::LinkStatusResponse* response) {
+                                           consistency_->fill_link(link, response);
+                                         }},
       *roles_);
 
   gram_api_ = std::make_unique<service::GramService>(*gram_.pool, *gram_.environment,
@@ -166,6 +171,19 @@ void Daemon::build_routing() {
     throw std::runtime_error(std::string("routing config: ") + e.what());
   }
   queues_->set_routing(forwarder_.get());
+}
+
+// The consistency announce (node/consistency_watch.h) rides in the links'
+// frames: set before any link starts. The watch reads each link's MAC.
+void Daemon::build_consistency() {
+  std::vector<ConsistencyWatch::Link> links;
+  for (auto& link : links_) links.push_back({link->name(), &link->config().mac(), &link->mac()});
+  try {
+    consistency_ = std::make_unique<ConsistencyWatch>(config_.consistency(), *codec_, std::move(links));
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(std::string("consistency config: ") + e.what());
+  }
+  queues_->set_piggyback(consistency_.get());
 }
 
 // Every link (node/node_link.h) and the choice of link they share.
@@ -311,6 +329,7 @@ void Daemon::stop() {
   definitions_.reset();
   queues_.reset();
   forwarder_.reset();  // after the queues, which call it
+  consistency_.reset();  // after the queues, which call it (the core is stopped: nothing reads the MACs it points to)
   // Every event recorded so far reaches the disk before the store closes.
   if (writer_) {
     writer_->stop();

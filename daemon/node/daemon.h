@@ -18,6 +18,7 @@
 #include "link/link_controller.h"
 #include "link/raw_log.h"
 #include "mac/mac.h"
+#include "node/consistency_watch.h"
 #include "node/definition_loader.h"
 #include "node/gram_setup.h"
 #include "node/node_link.h"
@@ -66,6 +67,7 @@ class Daemon {
   void schedule_expiry();
   void build_links();
   void build_routing();
+  void build_consistency();
   void schedule_depth_check();
   void build_telemetry(const telemetry::StoredStreams& stored);
 
@@ -100,6 +102,9 @@ class Daemon {
   std::unique_ptr<link::LinkChoice> choice_;
   std::unique_ptr<LinkParts> link_parts_;
   std::vector<std::unique_ptr<NodeLink>> links_;
+  // Consistency across the fleet (config `consistency`): the announce the
+  // queues piggyback on the links, and what neighbours announced.
+  std::unique_ptr<ConsistencyWatch> consistency_;
   // Applies the navigation input's depth to links enabled by depth.
   std::unique_ptr<asio::steady_timer> depth_timer_;
   // Prunes the event log on the core thread's schedule, on the writer.

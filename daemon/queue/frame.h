@@ -31,6 +31,11 @@ struct DataRequest {
   // it won any place): the node's choice of link (link/link_choice.h).
   // Unset: every message.
   std::function<bool(const std::string& type, int32_t dest, double priority)> may_carry;
+  // Whether the transmission goes even if the queues give it nothing (a
+  // MAC slot: an empty one still sends its broadcast frame). False (a
+  // satellite modem's session, held only for what the queues give): nothing
+  // of the node's own (queue/piggyback.h) may be what makes it transmit.
+  bool in_slot = false;
 };
 
 // One modem frame: DCCL messages back to back (they self-delimit, so no

@@ -168,7 +168,36 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
     frame.dest = dest;
     frames.push_back(std::move(frame));
   }
+  if (piggyback_ != nullptr) add_piggyback(request, dest, now, &frames);
   return frames;
+}
+
+// The piggyback (queue/piggyback.h) comes after every contest is over: in
+// what is left of the last frame, or, when the transmission may carry one
+// more frame (no message was left that fitted) and goes anyway (a slot), in
+// a frame of its own. Either way no queued message could have used the
+// bytes it takes, and it never makes a paid link transmit.
+void QueueManager::add_piggyback(const DataRequest& request, int32_t dest, double now, std::vector<Frame>* frames) {
+  if (request.max_num_frames == 0) return;
+  if (!frames->empty()) {
+    Frame& last = frames->back();
+    const size_t room = request.max_frame_bytes > last.bytes.size() ? request.max_frame_bytes - last.bytes.size() : 0;
+    std::string bytes = piggyback_->take(request.link, room, now);
+    if (!bytes.empty()) {
+      last.bytes += bytes;
+      return;
+    }
+    if (frames->size() >= request.max_num_frames) return;
+  }
+  if (!request.in_slot) return;
+  std::string bytes = piggyback_->take(request.link, request.max_frame_bytes, now);
+  if (bytes.empty()) return;
+  Frame frame;
+  frame.frame_id = next_frame_id_++;
+  // Nobody in particular: a frame the queues had nothing for.
+  frame.dest = dest == kAnyDestination ? kBroadcast : dest;
+  frame.bytes = std::move(bytes);
+  frames->push_back(std::move(frame));
 }
 
 void QueueManager::on_ack(uint64_t frame_id) {

@@ -43,6 +43,13 @@ std::vector<ReceivedMessage> QueueManager::receive(std::string_view frame, int32
         offset += outcome.used;
         continue;
       }
+      // The node's piggyback (queue/piggyback.h): last in its frame.
+      if (piggyback_ != nullptr && codec_.id_of(rest) == static_cast<int>(piggyback_->dccl_id())) {
+        const size_t used = piggyback_->on_received(rest, transmission_src, link, now);
+        if (used == 0) throw dccl::decode_error("malformed piggyback");
+        offset += used;
+        continue;
+      }
       const dccl::TypeInfo* info = codec_.find_id(codec_.id_of(rest));
       if (info == nullptr) throw dccl::decode_error("unknown DCCL id " + std::to_string(codec_.id_of(rest)));
       size_t used = 0;

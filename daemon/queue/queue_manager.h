@@ -38,6 +38,7 @@
 #include "queue/auth_guard.h"
 #include "queue/frame.h"
 #include "queue/message_journal.h"
+#include "queue/piggyback.h"
 #include "queue/queue.h"
 #include "queue/queue_stats.h"
 #include "queue/receive_filter.h"
@@ -135,6 +136,11 @@ class QueueManager {
   // `routing` must outlive the manager. Defined in routed_queues.cpp, as
   // are the custody calls below.
   void set_routing(Routing* routing) { routing_ = routing; }
+  // A node's own bytes in frames' spare space (queue/piggyback.h): asked
+  // for after the last frame's contest, handed what starts with its id on
+  // receive. Null (the default): frames unchanged. Must outlive the
+  // manager; set before the links start.
+  void set_piggyback(Piggyback* piggyback) { piggyback_ = piggyback; }
   // Custody, any thread: stores `record` (type: a custody queue's name,
   // Routing::custody_policy; payload: the envelope's bytes) with its
   // "queued" event; `appended` runs once it is durable (or failed), on the
@@ -276,6 +282,8 @@ class QueueManager {
   std::vector<Contender> contenders(double now);
   TypeState* contest(std::vector<Contender>& field, double now, size_t room, int32_t dest,
                      const DataRequest& request);
+  // The piggyback after the last contest (frame_building.cpp).
+  void add_piggyback(const DataRequest& request, int32_t dest, double now, std::vector<Frame>* frames);
   // One change of a message's fate, as emit() takes it; callers name the
   // fields they set (designated initializers), the rest keep these values.
   struct Change {
@@ -319,6 +327,7 @@ class QueueManager {
   int64_t last_received_seq_ = 0;
   // Gateways (routed_queues.cpp): null without routing.
   Routing* routing_ = nullptr;
+  Piggyback* piggyback_ = nullptr;
   // Custody queues sort after every DCCL id (last in a priority tie).
   int next_custody_key_ = 1 << 20;
   // The form of the message the last contest() chose (build_frames sends it).

@@ -24,6 +24,7 @@ grpc::Status AcommsService::GetStatus(grpc::ServerContext* context, const v1::Ge
   response->set_dccl_types(static_cast<int32_t>(node_.codec.types().size()));
   if (std::optional<Role> role = roles_.role_of(*context)) response->set_caller_role(std::string(to_string(*role)));
   response->set_caller(ApiRoles::source(*context));
+  if (node_.consistency_status) node_.core.call([&] { node_.consistency_status(response); });
   return grpc::Status::OK;
 }
 

@@ -7,6 +7,7 @@
 // event_rpcs.cpp, subscribe_rpc.cpp, telemetry_rpcs.cpp.
 
 #include <chrono>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,11 @@ struct Node {
   telemetry::TrackReader& track;
   // The gateway (config `routing`, core thread); null without.
   route::Forwarder* forwarder = nullptr;
+  // The fleet consistency watch's status fields (node/consistency_watch.h),
+  // GetStatus's and one link's (by index) in LinkStatus; core thread.
+  // Unset: not reported.
+  std::function<void(v1::Status*)> consistency_status;
+  std::function<void(int link, v1::LinkStatusResponse*)> consistency_link_status;
 };
 
 // Submit is a callback (reactor) method and the rest are synchronous: a

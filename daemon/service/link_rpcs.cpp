@@ -34,8 +34,9 @@ grpc::Status AcommsService::find_link(const std::string& name, Link** out) {
 
 // One link's status (core thread). The queues' counters (duplicates,
 // malformed, stale) are the node's: every link reports them.
-static void fill_link_status(const Link& link, const DaemonIdentity& identity, const queue::QueueManager& queues,
+static void fill_link_status(const Link& link, const DaemonIdentity& identity, const Node& node,
                              v1::LinkStatusResponse* response) {
+  const queue::QueueManager& queues = node.queues;
   response->set_name(link.name);
   response->set_modem_id(identity.modem_id);
   response->set_enabled(link.controller.enabled());
@@ -78,6 +79,9 @@ static void fill_link_status(const Link& link, const DaemonIdentity& identity, c
   for (const auto& [kind, count] : lost.bad_input) (*counters->mutable_bad_input())[kind] = count;
   counters->set_receptions_with_figures(stats.receptions_with_figures);
   counters->set_bad_frames_received(stats.bad_frames_received);
+  if (node.consistency_link_status) {
+    node.consistency_link_status(static_cast<int>(&link - node.links.data()), response);
+  }
 }
 
 grpc::Status AcommsService::LinkStatus(grpc::ServerContext* context, const v1::LinkStatusRequest* request,
@@ -88,10 +92,10 @@ grpc::Status AcommsService::LinkStatus(grpc::ServerContext* context, const v1::L
   node_.core.call([&] {
     // The top-level fields: the link asked for, or the first (what a
     // client written for one link reads); `links`: the one, or all.
-    fill_link_status(*asked, identity_, node_.queues, response);
+    fill_link_status(*asked, identity_, node_, response);
     for (const Link& link : node_.links) {
       if (request->link().empty() || &link == asked) {
-        fill_link_status(link, identity_, node_.queues, response->add_links());
+        fill_link_status(link, identity_, node_, response->add_links());
       }
     }
   });
