@@ -95,7 +95,7 @@ struct RateCalibration {
 struct CensoredExcessLossFit;  // eval/censored_excess_loss.h
 
 struct LinkCalibration {
-  std::string link;  // this node's link that heard them ("" for a node's only unnamed link)
+  std::string link;  // this node's link that heard them ("default" for a top-level driver/mac)
   int32_t src = -1;
   std::size_t packets = 0;
   std::optional<ExcessLossFit> excess;
