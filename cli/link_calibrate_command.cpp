@@ -75,9 +75,11 @@ void add_link_calibrate_command(CLI::App& link, const GlobalOptions& global) {
   calibrate->footer(
       "Reads this node's \"packet\" events (one per packet heard from another node, decoded or not, with "
       "the SNR the modem measured and the SNR the model predicted for the geometry: SL - TL - NL) and "
-      "fits, per sending node and rate:\n"
+      "fits, per link of this node (LinkConfig.name), sending node and rate:\n"
       "  excess loss = -offset, the offset being the mean of measured - predicted SNR over decoded packets, "
-      "with its spread (standard deviation: how single packets scatter about the model) and a 95% interval;\n"
+      "with its spread (standard deviation: how single packets scatter about the model) and a 95% interval; "
+      "with scatter and at least 5 lost packets, a censored fit (lost packets counted, Tobit-style) corrects "
+      "that mean's bias towards the packets that decoded and gives the excess loss printed;\n"
       "  reception curve = P(decoded) against predicted SNR, logistic: its 50% point and slope (per dB) "
       "with 95% intervals.\n"
       "Prints a physics { ... } block for the simulator (driver.sim.physics: add env_file and the noise), "

@@ -78,7 +78,7 @@ plot::Canvas draw_link_calibration(const std::vector<eval::PacketSample>& sample
       const plot::Rgb c = colour_of(colour[{link.src, rate}]);
       if (link.excess) {
         // measured = predicted + offset, only where it stays inside the frame.
-        const double offset = link.excess->offset_db;
+        const double offset = link.offset_db();  // the censored fit's where it fitted
         const double x0 = std::max(lo, lo - offset), x1 = std::min(hi, hi - offset);
         if (x1 > x0) dashed(canvas, a, x0, x0 + offset, x1, x1 + offset, c);
       }
@@ -95,7 +95,10 @@ plot::Canvas draw_link_calibration(const std::vector<eval::PacketSample>& sample
       }
       const int lx = kLegendLeft + (legend % 4) * kLegendColumn, ly = kLegendTop + (legend / 4) * 20;
       canvas.fill(lx, ly - 4, lx + 8, ly + 4, c);
-      canvas.text(lx + 14, ly, "from modem " + std::to_string(link.src) + ", rate " + std::to_string(rate), 13,
+      canvas.text(lx + 14, ly,
+                  (link.link.empty() ? "" : link.link + ": ") + "from modem " + std::to_string(link.src) + ", rate " +
+                      std::to_string(rate),
+                  13,
                   plot::kBlack);
       ++legend;
     }

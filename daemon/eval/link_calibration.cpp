@@ -1,5 +1,7 @@
 #include "eval/link_calibration.h"
 
+#include "eval/censored_excess_loss.h"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -22,6 +24,10 @@ std::string format(const char* pattern, auto... values) {
   return text;
 }
 
+std::string on_link(const LinkCalibration& link) {
+  return link.link.empty() ? std::string() : " on link \"" + link.link + "\"";
+}
+
 }  // namespace
 
 std::vector<PacketSample> packet_samples(const std::vector<v1::Event>& events, std::size_t* skipped) {
@@ -35,6 +41,7 @@ std::vector<PacketSample> packet_samples(const std::vector<v1::Event>& events, s
       continue;
     }
     PacketSample s;
+    s.link = f.link();
     s.src = f.transmission_src() != 0 ? f.transmission_src() : e.src();
     s.rate = f.rate();
     s.time = e.time();
@@ -141,19 +148,30 @@ bool LinkCalibration::fitted() const {
   return std::any_of(rates.begin(), rates.end(), [](const auto& r) { return r.second.curve.has_value(); });
 }
 
+double LinkCalibration::offset_db() const {
+  if (censored) return censored->offset_db;
+  return excess ? excess->offset_db : 0.0;
+}
+
 double LinkCalibration::physics_snr50_db(const ReceptionFit& curve) const {
-  return curve.snr50_predicted_db + (excess ? excess->offset_db : 0.0);
+  return curve.snr50_predicted_db + offset_db();
 }
 
 std::vector<LinkCalibration> calibrate_links(const std::vector<PacketSample>& samples) {
-  std::map<int32_t, std::vector<PacketSample>> by_src;
-  for (const PacketSample& s : samples) by_src[s.src].push_back(s);
+  std::map<std::pair<std::string, int32_t>, std::vector<PacketSample>> by_link;
+  for (const PacketSample& s : samples) by_link[{s.link, s.src}].push_back(s);
   std::vector<LinkCalibration> out;
-  for (const auto& [src, link_samples] : by_src) {
+  for (const auto& [key, link_samples] : by_link) {
     LinkCalibration link;
-    link.src = src;
+    link.link = key.first;
+    link.src = key.second;
     link.packets = link_samples.size();
     link.excess = fit_excess_loss(link_samples, &link.excess_refused);
+    if (link.excess) {
+      if (auto censored = fit_censored_excess_loss(link_samples, &link.censored_refused)) {
+        link.censored = std::make_shared<const CensoredExcessLossFit>(*censored);
+      }
+    }
     std::map<int32_t, std::vector<PacketSample>> by_rate;
     for (const PacketSample& s : link_samples) by_rate[s.rate].push_back(s);
     for (const auto& [rate, rate_samples] : by_rate) {
@@ -169,9 +187,18 @@ std::vector<LinkCalibration> calibrate_links(const std::vector<PacketSample>& sa
 }
 
 std::string physics_block(const LinkCalibration& link) {
-  std::string out = format("# acommsctl link calibrate: packets from modem %d (%zu heard)\n", link.src, link.packets);
+  std::string out = format("# acommsctl link calibrate: packets from modem %d%s (%zu heard)\n", link.src,
+                           on_link(link).c_str(), link.packets);
   out += "physics {\n";
-  if (link.excess) {
+  if (link.censored) {
+    out += format("  # measured - predicted SNR: %.2f dB over decoded packets only (spread %.2f dB, %zu packets)\n",
+                  link.excess->offset_db, link.excess->spread_db, link.excess->packets);
+    out += format("  # censored fit, lost packets counted: %.2f dB (spread %.2f dB, +/- %.2f dB at 95%%, %zu "
+                  "packets)\n",
+                  link.censored->offset_db, link.censored->spread_db, link.censored->offset_ci95_db,
+                  link.censored->packets);
+    out += format("  excess_loss_db: %.2f\n", -link.censored->offset_db);
+  } else if (link.excess) {
     out += format("  # measured - predicted SNR: %.2f dB (spread %.2f dB, +/- %.2f dB at 95%%, %zu packets)\n",
                   link.excess->offset_db, link.excess->spread_db, link.excess->offset_ci95_db, link.excess->packets);
     out += format("  excess_loss_db: %.2f\n", link.excess->excess_loss_db());
@@ -196,12 +223,20 @@ std::string physics_block(const LinkCalibration& link) {
 std::string calibration_report(const std::vector<LinkCalibration>& links) {
   std::string out;
   for (const LinkCalibration& link : links) {
-    out += format("link from modem %d: %zu packets\n", link.src, link.packets);
+    out += format("link from modem %d%s: %zu packets\n", link.src, on_link(link).c_str(), link.packets);
     if (link.excess) {
       out += format("  excess loss %.2f dB +/- %.2f (95%%); measured - predicted SNR: offset %.2f dB, spread %.2f dB "
                     "(%zu packets)\n",
                     link.excess->excess_loss_db(), link.excess->offset_ci95_db, link.excess->offset_db,
                     link.excess->spread_db, link.excess->packets);
+      if (link.censored) {
+        out += format("  censored fit (lost packets counted): excess loss %.2f dB +/- %.2f (95%%), spread %.2f dB "
+                      "(%zu packets): the decoded-only mean is biased by %+.2f dB\n",
+                      -link.censored->offset_db, link.censored->offset_ci95_db, link.censored->spread_db,
+                      link.censored->packets, link.excess->offset_db - link.censored->offset_db);
+      } else {
+        out += "  censored fit: not fitted: " + link.censored_refused + "\n";
+      }
     } else {
       out += "  excess loss: not fitted: " + link.excess_refused + "\n";
     }

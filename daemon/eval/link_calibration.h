@@ -16,6 +16,11 @@
 //    mean(measured − predicted) with its spread (sample standard deviation)
 //    and a 95% interval of the mean; excess_loss_db = −offset (a loss is a
 //    measured SNR below the prediction). One per link (all its rates).
+//    That mean sees only the survivors: with scatter near the threshold it
+//    overstates the offset, so where lost packets allow, the censored fit
+//    (eval/censored_excess_loss.h) gives the offset used instead.
+//  A "link" is this node's link that heard the packets (LinkFigures.link:
+//  a node has several) and the node that sent them.
 //  - reception curve: P(decoded) = 1 / (1 + exp(−k (x − x50))) with x the
 //    predicted SNR, fitted by logistic regression (Newton's method, IRLS),
 //    95% intervals from the inverse Fisher information (x50 by the delta
@@ -33,6 +38,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,6 +53,7 @@ inline constexpr std::size_t kMinEachOutcome = 5;
 
 // One packet heard: what calibrate fits.
 struct PacketSample {
+  std::string link;   // the name of this node's link that heard it (LinkFigures.link)
   int32_t src = -1;   // the node that sent it
   int32_t rate = 0;   // whose reception curve applies (mini-packets: 0)
   double time = 0;
@@ -85,11 +92,22 @@ struct RateCalibration {
   std::string curve_refused;  // why not, when curve is unset
 };
 
+struct CensoredExcessLossFit;  // eval/censored_excess_loss.h
+
 struct LinkCalibration {
+  std::string link;  // this node's link that heard them ("default" for a top-level driver/mac)
   int32_t src = -1;
   std::size_t packets = 0;
   std::optional<ExcessLossFit> excess;
   std::string excess_refused;  // why not, when excess is unset
+  // The censored fit, counting the lost packets (eval/censored_excess_loss.h);
+  // where it fits it is the excess loss the block prints, the decoded-only
+  // mean shown beside it.
+  std::shared_ptr<const CensoredExcessLossFit> censored;
+  std::string censored_refused;
+  // The offset the block uses: the censored fit's, else the decoded-only
+  // mean's, else 0.
+  double offset_db() const;
   std::map<int32_t, RateCalibration> rates;
   // Whether anything was fitted (else the link has too few data).
   bool fitted() const;
@@ -98,7 +116,7 @@ struct LinkCalibration {
   double physics_snr50_db(const ReceptionFit& curve) const;
 };
 
-// Per sending node, its rates in order.
+// Per link of this node and sending node, its rates in order.
 std::vector<LinkCalibration> calibrate_links(const std::vector<PacketSample>& samples);
 
 // The `physics { ... }` block of sim.proto's SimPhysicsConfig for `link`:

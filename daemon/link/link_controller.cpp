@@ -296,6 +296,10 @@ void LinkController::record_packet(const v1::ModemTransmission& transmission, bo
   if (f.frames() > 0 && f.bad_frames() >= f.frames()) decoded = false;
   figures.set_decoded(decoded);
   figures.clear_link_quality();  // the same figures again, as text: not worth a row each
+  // Which link heard it (a node with several is calibrated link by link),
+  // and the model's prediction when the driver has none (a real modem).
+  if (options_.choice != nullptr) figures.set_link(options_.choice->link(options_.link_index).name);
+  if (options_.predict && !figures.has_predicted_snr_db()) options_.predict(transmission, figures);
   queues_.record_packet(transmission.src(), transmission.dest(), figures.SerializeAsString());
 }
 

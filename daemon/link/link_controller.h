@@ -30,6 +30,7 @@
 #include <string_view>
 #include <vector>
 
+#include "acomms/v1/link_figures.pb.h"
 #include "acomms/v1/modem_transmission.pb.h"
 #include "core/clock.h"
 #include "link/driver.h"
@@ -74,6 +75,11 @@ struct LinkOptions {
   int link_index = 0;
   // Whether start() really starts the link (LinkConfig.enabled).
   bool enabled = true;
+  // Fills the model's prediction (predicted_tl_db, predicted_snr_db) into
+  // the figures of a packet heard from `transmission.src()`, when the
+  // driver gave none (a real modem: node/link_prediction.h). Core thread.
+  // Null: packet events carry what the driver gave.
+  std::function<void(const v1::ModemTransmission& transmission, v1::LinkFigures& figures)> predict;
 
   // From the config (mac.max_range_m, unset: kDefaultMaxRangeM) and the
   // core's clock.

@@ -217,6 +217,8 @@ void Daemon::build_links() {
       // commit callback outlives it.
       .after_receipt_durable =
           queue::durable_receipts(*journal_, [this](queue::Task task) { core_->post(std::move(task)); }),
+      .modem_positions = &modem_positions_,
+      .environment = gram_.environment.get(),
   });
   for (size_t i = 0; i < configured.size(); ++i) {
     links_.push_back(std::make_unique<NodeLink>(configured[i], static_cast<int>(i), *link_parts_));
@@ -252,6 +254,10 @@ void Daemon::build_telemetry(const telemetry::StoredStreams& /*stored*/) {
   };
   auto publish = [this, own_id](const std::vector<telemetry::ReceivedPosition>& positions) {
     for (const telemetry::ReceivedPosition& p : positions) {
+      // Where the sender is, for the model's prediction of what its
+      // packets should give here (node/link_prediction.h).
+      modem_positions_.set(p.src, core::NodeFix{static_cast<double>(p.time_s), p.position_m[0], p.position_m[1],
+                                                p.position_m[2]});
       subscribers_.publish(
           service::to_received_message(service::to_position(p, telemetry_settings_), own_id, p.received_s, p.seq));
     }

@@ -38,6 +38,7 @@
 #include "service/subscriber_hub.h"
 #include "store/store.h"
 #include "core/node_position.h"
+#include "node/modem_positions.h"
 #include "telemetry/telemetry_node.h"
 #include "telemetry/track_reader.h"
 
@@ -113,6 +114,7 @@ class Daemon {
   // streams to positions; the node's newest fix for the sim driver.
   telemetry::NodeSettings telemetry_settings_;
   core::NodePosition node_position_;
+  ModemPositions modem_positions_;  // the others', from their telemetry (core thread)
   std::unique_ptr<telemetry::TelemetryNode> telemetry_;
   std::unique_ptr<telemetry::TrackReader> track_;
   // Who may call what on the API (config auth); outlives both services.

@@ -50,6 +50,19 @@ NodeLink::NodeLink(const v1::LinkConfig& config, int index, LinkParts& parts) : 
   link_options.choice = &parts.choice;
   link_options.link_index = index;
   link_options.enabled = !config_.has_enabled() || config_.enabled();
+  if (name == "micromodem" && driver_config.micromodem().has_prediction()) {
+    PredictionSources sources{parts.own_id, &parts.node_position, parts.modem_positions, parts.environment,
+                              parts.models, [&core = parts.core](std::function<void()> task) { core.post(std::move(task)); },
+                              [&clock = parts.scheduler.clock()] { return clock.now_seconds(); }};
+    try {
+      prediction_ = LinkPrediction::create(driver_config.micromodem().prediction(), std::move(sources));
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(where + e.what());
+    }
+    link_options.predict = [p = prediction_.get()](const v1::ModemTransmission& heard, v1::LinkFigures& figures) {
+      p->predict(heard, figures);
+    };
+  }
   controller_ = std::make_unique<link::LinkController>(parts.own_id, parts.queues, *mac_, *driver_, parts.deliver,
                                                        link_options);
   // A failed driver's link carries nothing until it runs again: what waited

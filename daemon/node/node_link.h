@@ -29,10 +29,13 @@
 #include "link/link_controller.h"
 #include "link/raw_log.h"
 #include "mac/mac.h"
+#include "node/link_prediction.h"
+#include "node/modem_positions.h"
 #include "queue/queue_manager.h"
 
 namespace acomms::gram {
 class ModelPool;
+class VehicleEnvironment;
 }
 
 namespace acomms::node {
@@ -51,6 +54,10 @@ struct LinkParts {
   link::LinkChoice& choice;
   link::LinkController::Deliver deliver;
   std::function<void(std::function<void()> then)> after_receipt_durable;
+  // The model's prediction for packets a real modem hears
+  // (node/link_prediction.h): the others' positions and GRAM's environment.
+  const ModemPositions* modem_positions = nullptr;
+  gram::VehicleEnvironment* environment = nullptr;
 };
 
 class NodeLink {
@@ -68,6 +75,8 @@ class NodeLink {
   link::DriverSupervisor& driver() { return *driver_; }
   mac::Mac& mac() { return *mac_; }
   link::LinkController& controller() { return *controller_; }
+  // Null unless driver.micromodem.prediction is set.
+  const LinkPrediction* prediction() const { return prediction_.get(); }
 
   // A navigation fix's depth (m, down): enables or disables the link when
   // it crosses enable_above_depth_m (link/depth_switch.h). Core thread.
@@ -78,6 +87,7 @@ class NodeLink {
   std::unique_ptr<link::DriverSupervisor> driver_;
   std::unique_ptr<mac::Mac> mac_;
   std::unique_ptr<link::RawLog> raw_log_;  // outlives controller_, which writes to it
+  std::shared_ptr<LinkPrediction> prediction_;  // a Micro-Modem's, when configured
   std::unique_ptr<link::LinkController> controller_;
   std::optional<link::DepthSwitch> depth_;
 };

@@ -84,7 +84,8 @@ std::string MicroModemNetwork::daemon_log(int id) const {
   return found == daemons_.end() ? "" : found->second->stderr_text();
 }
 
-void MicroModemNetwork::write_config(int id, const std::string& mac, const std::string& micromodem) {
+void MicroModemNetwork::write_config(int id, const std::string& mac, const std::string& micromodem,
+                                     const std::string& extra) {
   std::ofstream config(dir_ / (node_name(id) + ".conf"));
   config << DaemonConfig{.data_dir = dir_ / node_name(id),
                          .unix_socket = socket(id),
@@ -97,7 +98,8 @@ void MicroModemNetwork::write_config(int id, const std::string& mac, const std::
          << "queue {\n"
          << "  type { type: \"example.Command\" policy { value_base: 5 }\n"
          << "         roles { source_field: \"src\" destination_field: \"dest\" timestamp_field: \"time\" } }\n"
-         << "}\n";
+         << "}\n"
+         << extra << "\n";
 }
 
 bool MicroModemNetwork::start(int id) {

@@ -41,7 +41,8 @@ class MicroModemNetwork {
   // Writes node `id`'s config: its modem on the fake's port, example
   // messages (example.Command queued with roles), `mac` inside mac { },
   // `micromodem` appended to its driver's micromodem { } settings.
-  void write_config(int id, const std::string& mac, const std::string& micromodem = "");
+  // `extra` is appended to the config (a gram { } block, say).
+  void write_config(int id, const std::string& mac, const std::string& micromodem = "", const std::string& extra = "");
   // Starts node `id`'s daemon and waits until it serves (false if not).
   bool start(int id);
   ChildProcess& daemon(int id) { return *daemons_.at(id); }

@@ -186,7 +186,10 @@ std::string MicroModemDriver::send(const ModemTransmission& tx, bool report) {
     return "the slot has no room left for node " + std::to_string(tx.src()) + "'s answer at rate " +
            std::to_string(tx.rate());
   }
-  return cycle_.start(poll, false);
+  std::string refused = cycle_.start(poll, false);
+  // Its answer is awaited: a timeout is a packet lost (reception.h).
+  if (refused.empty()) reception_.expect(poll.src(), poll.dest() >= 0 ? poll.dest() : settings_.id, poll.rate());
+  return refused;
 }
 
 void MicroModemDriver::on_port_state(link::TransportState state, const std::string& detail) {

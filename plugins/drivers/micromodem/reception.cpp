@@ -89,7 +89,26 @@ void Reception::on_message(const nmea::TransactionMessage& message) {
 void Reception::on_statistics(const nmea::ReceiveStatistics& statistics) {
   ACOMMS_ASSERT_CORE_THREAD();
   ++counters_.packets;
+  if (!record_ && statistics.mode == 2) {
+    // Nothing was even detected: the packet our poll asked for never came.
+    if (expected_) tell_lost(*expected_, nullptr);
+    return;
+  }
   close(&statistics);
+}
+
+void Reception::tell_lost(const Expected& from, const nmea::ReceiveStatistics* figures) {
+  if (expected_ && expected_->src == from.src) expected_.reset();
+  ++counters_.lost_told;
+  if (!on_failed_) return;
+  v1::ModemTransmission lost;
+  lost.set_type(v1::ModemTransmission::DATA);
+  lost.set_src(from.src);
+  lost.set_dest(from.dest);
+  lost.set_rate(from.rate);
+  lost.set_time(now_seconds_());
+  if (figures != nullptr) *lost.mutable_figures() = figures_of(*figures);
+  on_failed_(std::move(lost));
 }
 
 void Reception::close(const nmea::ReceiveStatistics* statistics) {
@@ -99,18 +118,19 @@ void Reception::close(const nmea::ReceiveStatistics* statistics) {
   if (record.frames.empty()) {
     // A cycle-init, an ACK, a blank or a damaged packet; only the damaged
     // one, its sender known, is worth telling (heard and lost).
-    if (record.bad_frames > 0 && record.cycle && statistics != nullptr && statistics->mode != 2 && on_failed_) {
-      v1::ModemTransmission lost;
-      lost.set_type(v1::ModemTransmission::DATA);
-      lost.set_src(record.cycle->source);
-      lost.set_dest(record.cycle->destination);
-      lost.set_rate(statistics->rate);
-      lost.set_time(now_seconds_());
-      *lost.mutable_figures() = figures_of(*statistics);
-      on_failed_(std::move(lost));
+    if (record.bad_frames > 0 && record.cycle && statistics != nullptr && statistics->mode != 2) {
+      tell_lost({record.cycle->source, record.cycle->destination, statistics->rate}, statistics);
+    } else if (statistics != nullptr && statistics->mode == 2) {
+      // Announced (a cycle-init heard, or our poll) and never came.
+      if (record.cycle) {
+        tell_lost({record.cycle->source, record.cycle->destination, record.cycle->rate}, nullptr);
+      } else if (expected_) {
+        tell_lost(*expected_, nullptr);
+      }
     }
     return;
   }
+  if (expected_ && expected_->src == record.first_frame->source) expected_.reset();  // the answer came
   v1::ModemTransmission rx;
   rx.set_type(v1::ModemTransmission::DATA);
   // $CARXD names source and destination for each frame; the cycle's

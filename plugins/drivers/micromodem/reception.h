@@ -46,6 +46,7 @@ class Reception {
     uint64_t frames = 0;          // good non-empty frames delivered
     uint64_t bad_frames = 0;      // $CAMSG,BAD_CRC
     uint64_t packet_timeouts = 0; // $CAMSG,PACKET_TIMEOUT
+    uint64_t lost_told = 0;       // packets told lost (on_failed): bad frames, or awaited and never came
   };
   using Deliver = std::function<void(v1::ModemTransmission)>;
 
@@ -57,12 +58,24 @@ class Reception {
   void on_message(const ::acomms::micromodem::TransactionMessage& m); // $CAMSG
   void on_statistics(const ::acomms::micromodem::ReceiveStatistics& statistics);  // $CACST
   // Drops the record in progress (a reboot).
-  void reset() { record_.reset(); }
+  void reset() {
+    record_.reset();
+    expected_.reset();
+  }
   // A packet whose every frame failed its CRC, closed by its $CACST, with a
   // $CACYC that named its source: told here (no frames; rate, src, dest
   // from the cycle; the $CACST figures), so the event log counts a packet
   // heard and lost (link::DriverCallbacks::on_reception_failed). Unset: dropped.
   void set_on_failed(Deliver on_failed) { on_failed_ = std::move(on_failed); }
+  // Our poll of `src` went out (a third-party $CCCYC): its packet is
+  // awaited at `rate`. If the modem reports that it never came
+  // ($CAMSG,PACKET_TIMEOUT and a $CACST with mode 2, spec §8.6), that is a
+  // packet sent and not received, told through on_failed (no figures: mode
+  // 2's are meaningless). A cycle-init heard from the water whose packet
+  // never came counts the same, from the cycle's source. Each mode-2
+  // $CACST tells at most one loss, and a packet told lost for its bad
+  // frames (mode 1) is not told again: no packet counts twice.
+  void expect(int32_t src, int32_t dest, int32_t rate) { expected_ = Expected{src, dest, rate}; }
 
   const Counters& counters() const { return counters_; }
 
@@ -76,10 +89,15 @@ class Reception {
   };
   Record& open();
   void close(const ::acomms::micromodem::ReceiveStatistics* statistics);
+  struct Expected {
+    int32_t src = -1, dest = -1, rate = 0;
+  };
+  void tell_lost(const Expected& from, const ::acomms::micromodem::ReceiveStatistics* figures);
 
   std::function<double()> now_seconds_;
   Deliver deliver_;
   Deliver on_failed_;
+  std::optional<Expected> expected_;  // our poll's answer, awaited
   std::optional<Record> record_;
   Counters counters_;
 };

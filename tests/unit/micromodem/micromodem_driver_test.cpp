@@ -578,5 +578,39 @@ TEST_F(MicroModemDriverTest, AModemThatFallsSilentIsAFailureAfterFiveUnansweredK
   EXPECT_THROW(run(120s), link::DriverError);
 }
 
+
+// ------------------------------- packets sent and not received (issue 32)
+
+// A poll whose answer never comes (the polled node's driver has stopped, so
+// its modem's data requests go unanswered and it sends nothing): the polling modem
+// says $CAMSG,PACKET_TIMEOUT and a $CACST with mode 2 (spec §8.6), and the
+// driver tells it as one packet from the polled node, lost, at the poll's
+// rate, without figures (mode 2's are meaningless). An answered poll is
+// not told lost, and the timeout is told once.
+TEST_F(MicroModemDriverTest, APollWhoseAnswerNeverCameIsToldAsOnePacketLost) {
+  two_nodes();
+  b_->frames_to_send = {std::string("\x01\x02", 2)};
+  a_->driver->initiate_transmission(data_to(2, 1, 1));
+  run(20s);
+  ASSERT_EQ(a_->received_of(ModemTransmission::DATA).size(), 1u);
+  EXPECT_TRUE(a_->failed.empty()) << "an answered poll is no loss";
+
+  b_->driver->stop();  // its host is gone: the modem's data requests go unanswered
+  nodes_ = {a_.get()};
+  a_->driver->initiate_transmission(data_to(2, 1, 3));
+  run(40s);
+  ASSERT_EQ(a_->failed.size(), 1u) << "the modem's PACKET_TIMEOUT";
+  const ModemTransmission& lost = a_->failed[0];
+  EXPECT_EQ(lost.src(), 2);
+  EXPECT_EQ(lost.dest(), 1);
+  EXPECT_EQ(lost.rate(), 3);
+  EXPECT_EQ(lost.type(), ModemTransmission::DATA);
+  EXPECT_FALSE(lost.has_figures());
+  EXPECT_EQ(a_->driver->reception_counters().lost_told, 1u);
+
+  run(30s);
+  EXPECT_EQ(a_->failed.size(), 1u) << "one timeout, one packet lost";
+}
+
 }  // namespace
 }  // namespace acomms::fake_micromodem
