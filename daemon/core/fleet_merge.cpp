@@ -186,6 +186,8 @@ const std::map<std::string, RepeatedFieldRule>& repeated_rules() {
       {"acomms.v1.Config.link", {Rule::kKeyed, {"name"}}},
       {"acomms.v1.LinkRoute.link", {Rule::kReplace, {}}},
       {"acomms.v1.RoutingConfig.route", {Rule::kKeyed, {"dest", "dest_min", "dest_max"}}},
+      // The fleet's digests are one list, set where the fleet agrees on it.
+      {"acomms.v1.ConsistencyConfig.expected_digest", {Rule::kReplace, {}}},
       {"acomms.drivers.IridiumShoreDriverConfig.modems", {Rule::kKeyed, {"imei"}}},
       // NVRAM lines: later ones win in the modem, so a class adds to the cruise's.
       {"acomms.drivers.MicroModemDriverConfig.cfg", {Rule::kAppend, {}}},
