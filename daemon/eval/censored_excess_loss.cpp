@@ -186,7 +186,13 @@ std::optional<CensoredExcessLossFit> fit_censored_excess_loss(const std::vector<
   double var_mu = hessian.fullPivLu().isInvertible() ? hessian.inverse()(0, 0) : NAN;
   if (!(std::isfinite(var_mu) && var_mu > 0)) {
     const Eigen::Matrix3d three = hessian.topLeftCorner<3, 3>();
-    var_mu = three.inverse()(0, 0);
+    var_mu = three.fullPivLu().isInvertible() ? three.inverse()(0, 0) : NAN;
+  }
+  // No curvature at the optimum: the data do not pin μ down, and an
+  // interval of ±0 would claim they do.
+  if (!(std::isfinite(var_mu) && var_mu > 0)) {
+    *why = "the censored fit's offset has no finite confidence interval on these data";
+    return std::nullopt;
   }
   CensoredExcessLossFit fit;
   fit.packets = samples.size();
@@ -195,7 +201,7 @@ std::optional<CensoredExcessLossFit> fit_censored_excess_loss(const std::vector<
   fit.spread_db = std::exp(best(1));
   fit.snr50_db = best(2);
   fit.width_db = std::exp(best(3));
-  fit.offset_ci95_db = kZ95 * std::sqrt(std::max(0.0, var_mu));
+  fit.offset_ci95_db = kZ95 * std::sqrt(var_mu);
   return fit;
 }
 

@@ -21,10 +21,6 @@ ConsistencyWatch::ConsistencyWatch(const v1::ConsistencyConfig& config, const dc
   if (announce_id_ < 128 || announce_id_ > 32767) {
     throw std::invalid_argument("consistency.announce_id " + std::to_string(announce_id_) + " is not in 128..32767");
   }
-  if (const dccl::TypeInfo* taken = codec.find_id(static_cast<int>(announce_id_))) {
-    throw std::invalid_argument("consistency.announce_id " + std::to_string(announce_id_) + " is the DCCL id of " +
-                                taken->name + ": choose another announce_id");
-  }
   if (!(interval_s_ >= 1)) {
     throw std::invalid_argument("consistency.announce_interval_s " + std::to_string(interval_s_) +
                                 " is below 1 s");
@@ -37,7 +33,15 @@ ConsistencyWatch::ConsistencyWatch(const v1::ConsistencyConfig& config, const dc
     }
     expected_.insert(*digest);
   }
-  if (!enabled_ || expected_.empty()) return;
+  // Disabled, the id is not taken: a config whose types use it loads as
+  // before, and a frame with that id is an ordinary message (the daemon
+  // sets no piggyback).
+  if (!enabled_) return;
+  if (const dccl::TypeInfo* taken = codec.find_id(static_cast<int>(announce_id_))) {
+    throw std::invalid_argument("consistency.announce_id " + std::to_string(announce_id_) + " is the DCCL id of " +
+                                taken->name + ": choose another announce_id");
+  }
+  if (expected_.empty()) return;
   for (size_t i = 0; i < links_.size(); ++i) {
     const uint32_t own = own_digest(static_cast<int>(i));
     if (expected_.count(own) == 0) {

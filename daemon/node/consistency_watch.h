@@ -63,7 +63,7 @@ class ConsistencyWatch final : public queue::Piggyback {
   // Off unless consistency.enabled is true (a bare DCCL decoder at a peer,
   // e.g. a non-acommsd shore, throws at the announce's unknown id).
   // Throws std::invalid_argument naming the consistency field: an
-  // announce_id outside 128..32767 or the DCCL id of a loaded type, an
+  // announce_id outside 128..32767 or (enabled) the DCCL id of a loaded type, an
   // announce_interval_s below 1, an expected_digest that is not 8 hex
   // digits. Warns when this node's own digest on a link is not expected.
   // `codec` outlives the watch.

@@ -183,6 +183,17 @@ void Daemon::build_consistency() {
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("consistency config: ") + e.what());
   }
+  // Disabled: the status still shows this node's own digest, but the
+  // announce id is not taken from the node's types, nothing is announced
+  // and a frame with that id is decoded as any message.
+  if (!consistency_->enabled()) return;
+  const uint32_t announce_id = consistency_->dccl_id();
+  if (forwarder_ && forwarder_->envelope_id() == announce_id) {
+    throw std::runtime_error("consistency config: consistency.announce_id " + std::to_string(announce_id) +
+                             " is routing.envelope_id too: choose another for one of them");
+  }
+  // A type loaded later (LoadDefinitions) with that id is refused naming it.
+  codec_->reserve_id(static_cast<int>(announce_id), "consistency.announce_id (the consistency announce)");
   queues_->set_piggyback(consistency_.get());
 }
 

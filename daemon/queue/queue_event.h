@@ -73,7 +73,7 @@ struct QueueEvent {
   // any sender.
   std::optional<int32_t> auth_sender;
   // kReceived of a message unwrapped from an envelope: its identity, kept
-  // with the event (migrations/0013_routed_identity.sql) so that a copy
+  // with the event (migrations/0013_route_delivered.sql) so that a copy
   // arriving after a restart is still delivered once.
   std::optional<RoutedIdentity> routed;
 };

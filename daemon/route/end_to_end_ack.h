@@ -44,7 +44,7 @@ class EndToEndAcks {
   void sent(RoutedSend send);
   // Its first hop acknowledged it; false when it is not noted.
   bool hop_acked(int64_t message_id);
-  // The note of `seq`, or nullopt.
+  // The note of `seq`, or nullptr.
   const RoutedSend* find(uint16_t seq) const;
   // Takes the note of `seq` (a receipt came), or nullopt.
   std::optional<RoutedSend> take(uint16_t seq);

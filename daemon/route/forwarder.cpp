@@ -155,7 +155,6 @@ queue::EnvelopeOutcome Forwarder::deliver_here(const Envelope& e, size_t used, i
     return consumed(used);
   }
   delivered_.remember(e.identity(), forget_after);
-  ++stats_.delivered;
   queue::EnvelopeOutcome outcome = consumed(used);
   unwrapping_ = true;
   try {
@@ -165,7 +164,17 @@ queue::EnvelopeOutcome Forwarder::deliver_here(const Envelope& e, size_t used, i
     throw;
   }
   unwrapping_ = false;
-  // The end-to-end ack: back to the origin by whatever route leads there.
+  // The end-to-end ack, back to the origin by whatever route leads there,
+  // only for a message handed to this node's subscribers: one whose type
+  // is not loaded here, whose tag failed, that names another destination or
+  // that the receive filter dropped was not delivered, and the origin must
+  // not be told it was (it keeps its hop ack only).
+  if (outcome.delivered.empty()) {
+    spdlog::warn("route: message {}/{} from node {} reached this node but was not delivered: no end-to-end ack",
+                 e.origin, e.seq, e.origin);
+    return outcome;
+  }
+  ++stats_.delivered;
   if (e.origin != own_id_) originate_receipt(e.origin, {ReceiptKind::kDelivered, e.seq}, e.value_tenths, now);
   return outcome;
 }

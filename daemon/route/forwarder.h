@@ -82,7 +82,7 @@ struct ForwarderStats {
                                    // (a failed commit is logged, not acknowledged)
   uint64_t custody_refused = 0;    // ... refused: custody full (no ACK)
   uint64_t custody_copies = 0;     // ... already held: acknowledged, not stored again
-  uint64_t delivered = 0;          // envelopes for this node passed to the receive side
+  uint64_t delivered = 0;          // envelopes for this node delivered to its subscribers
   uint64_t duplicates = 0;         // ... a copy of one already delivered: dropped
   uint64_t hop_limit_dropped = 0;  // envelopes dropped at their hop limit
   uint64_t expired_dropped = 0;    // envelopes that arrived with no ttl left

@@ -89,6 +89,16 @@ void Forwarder::report_expired(const Envelope& e, double now) {
 
 void Forwarder::on_receipt(const Envelope& e, const Receipt& receipt) {
   ++stats_.receipts_received;
+  const bool delivered = receipt.kind == ReceiptKind::kDelivered;
+  // Only the destination can say it delivered: a delivered receipt from any
+  // other node (a stale one after the sequence wrapped, or a forged one) is
+  // refused and the note stays for the real one. An expiry report may come
+  // from any node on the way.
+  if (const RoutedSend* noted = awaiting_.find(receipt.seq); noted != nullptr && delivered && e.origin != noted->dest) {
+    spdlog::warn("route: end-to-end ack of message {} from node {}, not its destination {}: ignored",
+                 noted->message_id, e.origin, noted->dest);
+    return;
+  }
   std::optional<RoutedSend> send = awaiting_.take(receipt.seq);
   if (!send) {
     // Sent before this node restarted (the notes are in memory), or twice.
@@ -101,13 +111,8 @@ void Forwarder::on_receipt(const Envelope& e, const Receipt& receipt) {
   message.type = send->type;
   message.src = own_id_;
   message.dest = send->dest;
-  const bool delivered = receipt.kind == ReceiptKind::kDelivered;
   const std::string detail = delivered ? "delivered to node " + std::to_string(e.origin) + " (end-to-end ack)"
                                        : "expired at node " + std::to_string(e.origin);
-  if (delivered && e.origin != send->dest) {
-    spdlog::warn("route: end-to-end ack of message {} from node {}, not its destination {}", send->message_id,
-                 e.origin, send->dest);
-  }
   queues_.report_routed(send->type, delivered ? queue::QueueEventKind::kDelivered : queue::QueueEventKind::kExpired,
                         message, detail);
 }

@@ -110,6 +110,24 @@ TEST_F(ExampleFleet, FiveDaemonsRunFromOneFleetFileAndTheShoreHearsTheVehicles) 
   const std::string shore_db = (dir_ / "fleet/var/shore/acommsd.db").string();
   wait_until([&] { return statuses_received(shore_db) == std::set<int>{3, 5}; }, 45s, 500ms);
   EXPECT_EQ(statuses_received(shore_db), (std::set<int>{3, 5})) << daemons["shore"]->stderr_text();
+  // Checked at sea: the cruise level enables the announce with the fleet's
+  // expected digest, which every node has: the shore hears the others agree.
+  v1::Status shore_status;
+  wait_until(
+      [&] {
+        grpc::ClientContext context;
+        shore_status.Clear();
+        api(socket("shore"))->GetStatus(&context, v1::GetStatusRequest(), &shore_status);
+        return shore_status.consistency_size() >= 2;
+      },
+      30s, 500ms);
+  EXPECT_EQ(shore_status.consistency_digest(), "9d3fc24b");
+  EXPECT_GE(shore_status.consistency_size(), 2) << shore_status.DebugString();
+  for (const v1::NodeConsistency& heard : shore_status.consistency()) {
+    EXPECT_TRUE(heard.agrees()) << heard.DebugString();
+    EXPECT_EQ(heard.digest(), "9d3fc24b");
+  }
+  EXPECT_EQ(shore_status.unexpected_digests(), 0u);
   for (auto& [node, daemon] : daemons) {
     daemon->signal(SIGTERM);
     EXPECT_EQ(daemon->wait(15s), std::optional<int>(0)) << node << ":\n" << daemon->stderr_text();

@@ -6,7 +6,8 @@
 // Shown in one run, because each start of the network costs seconds of
 // real time: Commands from the shore reach each vehicle once and Statuses
 // from both vehicles reach the shore once, while the buoy is SIGKILLed at
-// random moments when it holds messages and restarted on its data dir; a
+// random moments when it holds messages and restarted on its data dir; each
+// origin hears one hop ack and one end-to-end ack per message; a
 // SurveyPlan, a type the buoy never loaded, reaches B with the shore's DCCL
 // bytes; a Command for node 20, which the buoy and A route to each other,
 // ends at the hop limit. The routes the buoy and the shore learned are
@@ -119,11 +120,12 @@ bool loads_type(const std::string& socket, const std::string& type) {
 }
 
 // What a message's origin logged about its acknowledgements
-// (message_history). Today one hop ack ("acked": the first hop has it);
-// the end-to-end ack, when the daemon sends it back, is one more kind in
-// `kinds` to assert here, once per delivered message.
+// (message_history): the hop ack ("acked": the first hop has it) and the
+// end-to-end ack ("delivered": the destination's receipt came back along
+// the reverse route), each once.
 struct OriginAcks {
   int hop_acks = 0;
+  int end_to_end_acks = 0;
   std::map<std::string, int> kinds;
 };
 OriginAcks origin_acks(const std::string& socket, int64_t message_id) {
@@ -131,6 +133,7 @@ OriginAcks origin_acks(const std::string& socket, int64_t message_id) {
   for (const v1::Event& e : message_history(socket, message_id)) {
     ++acks.kinds[e.kind()];
     acks.hop_acks += e.kind() == "acked";
+    acks.end_to_end_acks += e.kind() == "delivered";
   }
   return acks;
 }
@@ -320,13 +323,28 @@ TEST_F(GatewayFleetTest, ShoreAndVehiclesExchangeEverythingOnceThroughABuoyKille
   EXPECT_TRUE(wrong_.empty()) << wrong_.size() << " delivered where they were not sent, first: " << wrong_.front();
   EXPECT_TRUE(missing(0).empty()) << "lost: " << numbers(missing(0)) << fleet_.all_logs();
   EXPECT_EQ(held_at_kill.size(), static_cast<size_t>(kills));
-  // Each origin heard its first hop's ACK once (the end-to-end ack will
-  // be one more kind in origin_acks).
+  // Each origin heard its first hop's ACK once, and the destination's
+  // end-to-end ack once (the receipts travel back with custody, through the
+  // buoy's restarts too).
+  EXPECT_TRUE(wait_until(
+      [&] {
+        for (const auto& [n, m] : sent_) {
+          if (m.destination != kNowhere && origin_acks(fleet_.socket(m.origin), m.origin_id).end_to_end_acks == 0) {
+            return false;
+          }
+        }
+        return true;
+      },
+      60s, 500ms));
+  int end_to_end = 0;
   for (const auto& [n, m] : sent_) {
     if (m.destination == kNowhere) continue;
-    EXPECT_EQ(origin_acks(fleet_.socket(m.origin), m.origin_id).hop_acks, 1)
-        << m.what << " " << n << " at " << GatewayFleet::name(m.origin);
+    const OriginAcks acks = origin_acks(fleet_.socket(m.origin), m.origin_id);
+    EXPECT_EQ(acks.hop_acks, 1) << m.what << " " << n << " at " << GatewayFleet::name(m.origin);
+    EXPECT_EQ(acks.end_to_end_acks, 1) << m.what << " " << n << " at " << GatewayFleet::name(m.origin);
+    end_to_end += acks.end_to_end_acks;
   }
+  std::cout << "gateway fleet: " << end_to_end << " end-to-end acks back at their origins\n";
 
   // The plan: the buoy never loaded its type, yet B got the shore's DCCL
   // bytes: they crossed the satellite inside an MT as the shore encoded

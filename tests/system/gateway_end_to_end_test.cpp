@@ -65,6 +65,31 @@ TEST_F(GatewayNetwork, TheOriginHearsTheEndToEndAckAndItsEventsTellItFromTheHopA
   EXPECT_EQ(buoy_journal_.stored() + vehicle_journal_.stored(), 0u);
 }
 
+// The destination got the envelope but handed nothing to its subscribers
+// (here it has not loaded the type): no end-to-end ack, so the origin is
+// never told the message was delivered.
+TEST_F(GatewayNetwork, AMessageTheDestinationCannotDeliverIsNotAckedEndToEnd) {
+  build_shore(R"(route { dest: 3 next_hop: 2 link: "sat" })");
+  build_buoy("");
+  vehicle_ = std::make_unique<GatewayNode>(3, std::vector{status_proto()}, kQueues, "",
+                                           std::vector<LinkSpec>{{"acoustic", acoustic_, kAcousticCycle}}, scheduler_,
+                                           vehicle_journal_);
+  shore_->start();
+  buoy_->start();
+  vehicle_->start();
+  scheduler_.run_for(60s);
+  shore_->submit("net.Command", "src: 1 dest: 3 code: 417");
+  const int64_t id = shore_->queues->find_queue("net.Command")->messages().front().record.id;
+  scheduler_.run_for(600s);
+  EXPECT_EQ(commands_received(*vehicle_), 0u);
+  const std::vector<queue::QueueEvent> events = events_of(shore_journal_, id);
+  EXPECT_NE(first_of(events, queue::QueueEventKind::kAcked), nullptr);  // the first hop has it
+  EXPECT_EQ(first_of(events, queue::QueueEventKind::kDelivered), nullptr);
+  EXPECT_EQ(vehicle_->forwarder->stats().receipts_sent, 0u);
+  EXPECT_EQ(vehicle_->forwarder->stats().delivered, 0u);
+  EXPECT_EQ(buoy_->custody_held(), 0u);  // the buoy passed it on
+}
+
 TEST_F(GatewayNetwork, AMessageThatExpiresInTheBuoysCustodyIsReportedToItsOriginWithWhere) {
   // net.Command lives 200 s on the shore; the vehicle is off.
   shore_ = std::make_unique<GatewayNode>(

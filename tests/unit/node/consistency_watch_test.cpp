@@ -181,8 +181,9 @@ TEST_F(ConsistencyWatchTest, StatusShowsTheOwnDigestAndEachNodeHeard) {
   EXPECT_EQ(link.consistency(0).digest(), "0badcafe");
 }
 
-// As the routing envelope's id is: a loaded type with the announce's id
-// would be read as an announce, so the start stops and says which type.
+// As the routing envelope's id is: with consistency enabled, a loaded type
+// with the announce's id would be read as an announce, so the start stops
+// and says which type; disabled, nothing is taken.
 TEST_F(ConsistencyWatchTest, RefusesAnAnnounceIdALoadedTypeUses) {
   testing::TempDir dir;
   std::ofstream(dir / "taken.proto")
@@ -200,6 +201,9 @@ TEST_F(ConsistencyWatchTest, RefusesAnAnnounceIdALoadedTypeUses) {
         << e.what();
   }
   EXPECT_NO_THROW(watch("announce_id: 32765"));
+  // Disabled, the id is an ordinary DCCL id: the config loads as before.
+  EXPECT_NO_THROW(ConsistencyWatch(v1::ConsistencyConfig(), *codec_,
+                                   std::vector<ConsistencyWatch::Link>{{"acoustic", &mac_config_, &mac_}}));
 }
 
 TEST_F(ConsistencyWatchTest, RefusesBadSettings) {
