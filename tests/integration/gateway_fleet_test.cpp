@@ -46,7 +46,15 @@ using namespace std::chrono_literals;
 constexpr int kPlan = 777;
 constexpr int kLoopCommand = 999;
 constexpr auto kStatusPeriod = std::chrono::milliseconds(4000);  // per vehicle
-constexpr double kRelayWaitBoundS = 3 * 3 * kAcousticSlotS;
+// How long vehicle A may hold a message it relays: its transmissions take
+// turns between its two next hops (a message waits up to 2 cycles for its
+// neighbour's turn), a full frame puts the rest off by one more turn (2
+// cycles), and the end-to-end acks of both directions share A's slots with
+// the messages; so 5 cycles of 3 slots. The head-of-line wait this guards
+// against (a held message blocking those behind it for the other next hop)
+// measured 24 to 94 s; the deterministic tests of it are the simulated
+// system.GatewayNetwork.*HoldBack* cases.
+constexpr double kRelayWaitBoundS = 5 * 3 * kAcousticSlotS;
 
 int kills_wanted() {
   const char* text = std::getenv("ACOMMS_GATEWAY_FLEET_KILLS");
@@ -405,12 +413,11 @@ TEST_F(GatewayFleetTest, ShoreAndVehiclesExchangeEverythingOnceThroughABuoyKille
   EXPECT_EQ(figures.delivered, figures.messages);
   EXPECT_GT(figures.traced, 0);
   // Vehicle A (never killed, always hearing both neighbours) sends what it
-  // holds for others in its next slot for that neighbour: with two next
-  // hops taking turns, within 3 acoustic cycles of taking custody.
+  // holds for others within kRelayWaitBoundS of taking custody.
   const HopDelay a_wait = figures.relay_wait.count(kVehicleA) ? figures.relay_wait.at(kVehicleA) : HopDelay{};
   EXPECT_LE(a_wait.max_s, kRelayWaitBoundS)
       << "vehicle A held custody message " << (a_wait.n ? figures.relay_worst_id.at(kVehicleA) : 0) << " " << a_wait.max_s
-      << " s before sending it on (bound " << kRelayWaitBoundS << " s, 3 acoustic cycles): the custody message "
+      << " s before sending it on (bound " << kRelayWaitBoundS << " s, 5 acoustic cycles): the custody message "
       << "at the head of A's custody queue, for one next hop, holds the ones behind it for the other whenever A's "
       << "transmission goes to the other next hop (a transmission takes only the run of custody messages at the "
       << "queue's head that share its next hop)";
