@@ -192,6 +192,8 @@ const std::map<std::string, RepeatedFieldRule>& repeated_rules() {
       // NVRAM lines: later ones win in the modem, so a class adds to the cruise's.
       {"acomms.drivers.MicroModemDriverConfig.cfg", {Rule::kAppend, {}}},
       {"acomms.drivers.MicroModemDriverConfig.mm1_modems", {Rule::kReplace, {}}},
+      // A moored modem's position: a level may move one or add another.
+      {"acomms.drivers.MicroModemPrediction.fixed", {Rule::kKeyed, {"modem"}}},
       // Each node's neighbours differ: the node's own list is the list.
       {"acomms.drivers.SimDriverConfig.peers", {Rule::kReplace, {}}},
       {"acomms.drivers.UdpDriverConfig.peers", {Rule::kReplace, {}}},
