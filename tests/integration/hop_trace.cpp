@@ -98,6 +98,7 @@ NetworkFigures network_figures(const std::vector<TracedMessage>& messages,
       f.sent_events += e.kind() == "sent";
       f.retries += e.kind() == "retry";
       f.hop_acks += e.kind() == "acked";
+      f.end_to_end_acks += e.kind() == "delivered";
     }
   }
   for (const auto& [node, list] : events) {
@@ -156,10 +157,10 @@ void NetworkFigures::print(std::ostream& out, const std::map<int, std::string>& 
                 traced, hops, traced ? static_cast<double>(hops) / traced : 0.0);
   out << line;
   std::snprintf(line, sizeof line,
-                "  on the air: %llu sends (each try of each hop), %llu retries; hop acks %llu; end-to-end acks: "
-                "not yet in the daemon\n",
+                "  on the air: %llu sends (each try of each hop), %llu retries; hop acks %llu; end-to-end acks "
+                "%llu\n",
                 static_cast<unsigned long long>(sent_events), static_cast<unsigned long long>(retries),
-                static_cast<unsigned long long>(hop_acks));
+                static_cast<unsigned long long>(hop_acks), static_cast<unsigned long long>(end_to_end_acks));
   out << line;
   for (const auto& [hop, d] : per_hop) {
     std::snprintf(line, sizeof line, "  hop %-9s -> %-9s  %3d messages, delay mean %6.2f s, max %6.2f s\n",

@@ -66,8 +66,8 @@ class CustodyWatch {
 // Every event in `socket`'s log of these kinds (empty: all), oldest first.
 std::vector<v1::Event> node_events(const std::string& socket, const std::vector<std::string>& kinds = {});
 
-// One message's history at a node (Events by message id): where its hop
-// acks are, and, once the end-to-end acks land, where that one will be.
+// One message's history at a node (Events by message id): its hop acks
+// ("acked") and its end-to-end ack ("delivered").
 std::vector<v1::Event> message_history(const std::string& socket, int64_t message_id);
 
 // A message the test sent, and what became of it.
@@ -95,6 +95,7 @@ struct NetworkFigures {
   uint64_t sent_events = 0;     // "sent" events on every node (each try of each hop)
   uint64_t retries = 0;         // "retry" events: a hop not acknowledged in time
   uint64_t hop_acks = 0;        // "acked" events on every node (an ACK from the next hop)
+  uint64_t end_to_end_acks = 0; // "delivered" events at the origins (the destination's receipt came back)
   std::map<std::pair<int, int>, HopDelay> per_hop;
   // Per relay: from taking custody to the first send of the message on.
   std::map<int, HopDelay> relay_wait;
