@@ -67,7 +67,9 @@ class LinkChoice {
   bool usable(int link) const { return state_.at(link).enabled && state_.at(link).driver_up; }
 
   // Whether `link` may carry a `type` message to `dest` now, its type's
-  // priority being `priority` (the rule above).
+  // priority being `priority` (the rule above). For a routed message `dest`
+  // is its next hop, not its final destination: the link reaches the
+  // neighbour, and the route (route/) chose that neighbour.
   bool may_carry(int link, const std::string& type, int32_t dest, double priority, double now_s) const;
   // The link that carries (`type`, `dest`) now, cost aside: -1 when none
   // may, or when no route applies (any may).

@@ -29,6 +29,7 @@ struct DataRequest {
   // Whether this link may carry a message of `type` to `dest` now, the
   // type's priority being `priority` (its P when this request came, before
   // it won any place): the node's choice of link (link/link_choice.h).
+  // `dest` is the next hop of a message that goes wrapped in an envelope.
   // Unset: every message.
   std::function<bool(const std::string& type, int32_t dest, double priority)> may_carry;
   // Whether the transmission goes even if the queues give it nothing (a
