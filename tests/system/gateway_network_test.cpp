@@ -132,6 +132,50 @@ TEST_F(GatewayNetwork, AFullBuoyRefusesCustodyAndTheShoreKeepsTheMessage) {
   EXPECT_EQ(buoy_->custody_held(), 0u);
 }
 
+// The buoy's satellite link is down (disabled): it goes on taking the
+// vehicle's statuses for the shore into custody up to its bound, lists
+// what it holds (origin, destination), refuses the rest (the vehicle keeps
+// them), and delivers everything once the link is back.
+TEST_F(GatewayNetwork, ABuoyWhoseSatelliteIsDownTakesAcousticTrafficWithinItsBoundAndSaysWhatItHolds) {
+  build_shore("");
+  build_buoy(R"(max_custody: 3 route { dest: 1 next_hop: 1 link: "sat" })");
+  vehicle_ = std::make_unique<GatewayNode>(3, std::vector{status_proto(), command_proto()}, kCommandQueues,
+                                           R"(route { dest: 1 next_hop: 2 link: "acoustic" })",
+                                           std::vector<LinkSpec>{{"acoustic", acoustic_, kAcousticCycle}}, scheduler_,
+                                           vehicle_journal_);
+  buoy_->choice->set_enabled(0, false);  // "sat"
+  shore_->start();
+  buoy_->start();
+  vehicle_->start();
+  for (int battery = 1; battery <= 5; ++battery) {
+    vehicle_->submit("net.Status", "src: 3 dest: 1 battery: " + std::to_string(battery));
+  }
+  scheduler_.run_for(900s);
+  EXPECT_EQ(buoy_->custody_held(), 3u);
+  EXPECT_GT(buoy_->forwarder->stats().custody_refused, 0u);
+  EXPECT_EQ(vehicle_->queues->find_queue("net.Status")->size(), 2u);  // refused: the vehicle keeps them
+  size_t listed = 0;
+  for (const queue::Queue* q : buoy_->queues->queues()) {
+    for (const queue::QueuedMessage& m : q->messages()) {
+      const std::string held = buoy_->forwarder->custody_json(*q, m);
+      EXPECT_NE(held.find("\"origin\":3,\"destination\":1,"), std::string::npos) << held;
+      listed += !held.empty();
+    }
+  }
+  EXPECT_EQ(listed, 3u);
+  size_t statuses = 0;
+  for (const auto& r : shore_->received) statuses += r.type == "net.Status";
+  EXPECT_EQ(statuses, 0u);
+
+  buoy_->choice->set_enabled(0, true);
+  scheduler_.run_for(1800s);
+  statuses = 0;
+  for (const auto& r : shore_->received) statuses += r.type == "net.Status";
+  EXPECT_EQ(statuses, 5u);
+  EXPECT_EQ(buoy_->custody_held(), 0u);
+  EXPECT_EQ(vehicle_->queues->find_queue("net.Status")->size(), 0u);
+}
+
 TEST_F(GatewayNetwork, ABuoyThatCannotStoreTheMessageDoesNotAcknowledgeIt) {
   FailingJournal failing;
   failing.fail_appends = true;
