@@ -17,7 +17,7 @@ namespace {
 using namespace std::chrono_literals;
 
 // A journal whose appends complete when the test says (a slow disk).
-class DeferredJournal final : public queue::MessageJournal {
+class DeferredJournal final : public JournalInMemory {
  public:
   using MessageJournal::append;
   void append(queue::JournalMessage message, Appended appended) override {
@@ -26,20 +26,8 @@ class DeferredJournal final : public queue::MessageJournal {
   void fail_all() {
     for (auto& appended : std::exchange(held, {})) appended(0, std::make_exception_ptr(std::runtime_error("disk")));
   }
-  void record(const queue::QueueEvent& event) override { inner.record(event); }
-  std::vector<queue::JournalMessage> load() override { return inner.load(); }
-  std::vector<queue::QueueEvent> received_since(double since) override { return inner.received_since(since); }
-  std::vector<queue::QueueEvent> authenticated_since(double since) override {
-    return inner.authenticated_since(since);
-  }
-  std::vector<queue::RoutedIdentity> routed_since(double now) override { return inner.routed_since(now); }
-  void flush() override {}
-  int64_t last_received_seq() override { return inner.last_received_seq(); }
-  void when_committed(Committed committed) override { committed(nullptr); }
-  uint64_t events_not_stored() const override { return 0; }
 
   std::vector<Appended> held;
-  queue::MemoryJournal inner;
 };
 
 // An envelope from the shore (1) for the vehicle (3), as the buoy hears it.

@@ -54,15 +54,11 @@ inline constexpr const char* kCommandQueues =
     R"(type { type: "net.Status" roles { source_field: "src" destination_field: "dest" } }
        type { type: "net.Command" roles { source_field: "src" destination_field: "dest" } })";
 
-// A journal whose appends can be made to fail (a full disk), the rest
-// kept in memory.
-class FailingJournal final : public queue::MessageJournal {
+// A journal kept in memory whose appends a test decides (subclasses):
+// what a store fault does to a gateway.
+class JournalInMemory : public queue::MessageJournal {
  public:
   using MessageJournal::append;
-  void append(queue::JournalMessage message, Appended appended) override {
-    if (fail_appends) return appended(0, std::make_exception_ptr(std::runtime_error("disk full")));
-    inner.append(std::move(message), std::move(appended));
-  }
   void record(const queue::QueueEvent& event) override { inner.record(event); }
   std::vector<queue::JournalMessage> load() override { return inner.load(); }
   std::vector<queue::QueueEvent> received_since(double since) override { return inner.received_since(since); }
@@ -75,8 +71,19 @@ class FailingJournal final : public queue::MessageJournal {
   void when_committed(Committed committed) override { committed(nullptr); }
   uint64_t events_not_stored() const override { return 0; }
 
-  bool fail_appends = false;
   queue::MemoryJournal inner;
+};
+
+// A journal whose appends can be made to fail (a full disk).
+class FailingJournal final : public JournalInMemory {
+ public:
+  using MessageJournal::append;
+  void append(queue::JournalMessage message, Appended appended) override {
+    if (fail_appends) return appended(0, std::make_exception_ptr(std::runtime_error("disk full")));
+    inner.append(std::move(message), std::move(appended));
+  }
+
+  bool fail_appends = false;
 };
 
 struct LinkSpec {
