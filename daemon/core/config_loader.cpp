@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/config_error.h"
+#include "core/first_parse_error.h"
 #include "core/node_links.h"
 
 namespace acomms::core {
@@ -25,24 +26,6 @@ const std::vector<std::pair<std::string_view, std::string_view>>& embedded_examp
 namespace {
 
 namespace pb = google::protobuf;
-
-// Keeps the first error the text-format parser reports (later ones are
-// usually consequences of it).
-class FirstErrorCollector : public pb::io::ErrorCollector {
- public:
-  void AddError(int line, pb::io::ColumnNumber column, const std::string& message) override {
-    if (!error_) error_ = Located{line, column, message};
-  }
-  struct Located {
-    int line;  // 0-based, as the tokenizer counts
-    int column;
-    std::string message;
-  };
-  const std::optional<Located>& error() const { return error_; }
-
- private:
-  std::optional<Located> error_;
-};
 
 std::vector<std::string> lines_of(std::string_view text) {
   std::vector<std::string> lines;
@@ -271,7 +254,7 @@ void fill_defaults(v1::Config& config) {
 v1::Config parse_config(std::string_view text, const std::string& file_name) {
   v1::Config config;
   pb::TextFormat::Parser parser;
-  FirstErrorCollector errors;
+  FirstParseError errors;
   pb::TextFormat::ParseInfoTree tree;
   parser.RecordErrorsTo(&errors);
   parser.WriteLocationsTo(&tree);

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/config_error.h"
+#include "core/first_parse_error.h"
 #include "core/config_loader.h"
 #include "core/fleet_render.h"
 
@@ -20,20 +21,6 @@ namespace {
 
 namespace pb = google::protobuf;
 namespace fs = std::filesystem;
-
-class FirstError : public pb::io::ErrorCollector {
- public:
-  void AddError(int line, pb::io::ColumnNumber column, const std::string& message) override {
-    if (message_.empty()) {
-      line_ = line + 1;
-      column_ = column + 1;
-      message_ = message;
-    }
-  }
-  int line_ = 0;
-  int column_ = 0;
-  std::string message_;
-};
 
 // Fields that hold a path: relative ones are relative to the fleet file
 // that names them.
@@ -116,12 +103,14 @@ void Fleet::read(const std::string& path, const std::string* given_text) {
 
   v1::FleetFile file;
   pb::TextFormat::Parser parser;
-  FirstError errors;
+  FirstParseError errors;
   pb::TextFormat::ParseInfoTree tree;
   parser.RecordErrorsTo(&errors);
   parser.WriteLocationsTo(&tree);
   if (!parser.ParseFromString(text, &file)) {
-    throw ConfigError(path, errors.line_, errors.column_, "", errors.message_.empty() ? "not a fleet file" : errors.message_);
+    const auto& e = errors.error();
+    if (!e) throw ConfigError(path, 0, 0, "", "not a fleet file");
+    throw ConfigError(path, e->line + 1, e->column + 1, "", e->message);
   }
   const fs::path dir = fs::absolute(fs::path(path)).parent_path();
   const pb::Descriptor* file_type = v1::FleetFile::descriptor();

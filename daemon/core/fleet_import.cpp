@@ -1,22 +1,14 @@
 #include "core/fleet_import.h"
 
-#include <google/protobuf/text_format.h>
-
 #include <stdexcept>
+
+#include "core/fleet_merge.h"
 
 namespace acomms::core {
 
 namespace {
 
 namespace pb = google::protobuf;
-
-std::string value_text(const pb::Message& message, const pb::FieldDescriptor* field, int index) {
-  std::string text;
-  pb::TextFormat::Printer printer;
-  printer.SetSingleLineMode(true);
-  printer.PrintFieldValueToString(message, field, index, &text);
-  return text;
-}
 
 bool is_set(const pb::Message& message, const pb::FieldDescriptor* field) {
   return field->is_repeated() ? message.GetReflection()->FieldSize(message, field) > 0

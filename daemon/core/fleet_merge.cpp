@@ -11,16 +11,6 @@ using Rule = RepeatedRule;
 
 std::string element(const std::string& path, int index) { return path + "[" + std::to_string(index) + "]"; }
 
-// One value of `field` (element `index`, -1 when singular) as text: used to
-// compare values and to build keys.
-std::string value_text(const pb::Message& message, const pb::FieldDescriptor* field, int index) {
-  std::string text;
-  pb::TextFormat::Printer printer;
-  printer.SetSingleLineMode(true);
-  printer.PrintFieldValueToString(message, field, index, &text);
-  return text;
-}
-
 // Copies one scalar value of `field` from src (element src_index, -1:
 // singular) into dst (appended when the field is repeated).
 void copy_scalar(const pb::Message& src, const pb::FieldDescriptor* field, int src_index, pb::Message& dst) {
@@ -161,6 +151,14 @@ void merge_message(const pb::Message& src, const Provenance& src_where, const st
 }
 
 }  // namespace
+
+std::string value_text(const pb::Message& message, const pb::FieldDescriptor* field, int index) {
+  std::string text;
+  pb::TextFormat::Printer printer;
+  printer.SetSingleLineMode(true);
+  printer.PrintFieldValueToString(message, field, index, &text);
+  return text;
+}
 
 std::string to_string(const Origin& origin) { return origin.file + ":" + std::to_string(origin.line); }
 

@@ -50,6 +50,12 @@ struct RepeatedFieldRule {
   std::vector<std::string> key_fields;  // kKeyed: the fields that make the key
 };
 
+// One value of `field` (element `index`, -1 when singular) as one line of
+// text format: how the merge compares values and builds keys, and how
+// import finds what configs share.
+std::string value_text(const google::protobuf::Message& message, const google::protobuf::FieldDescriptor* field,
+                       int index);
+
 // Full field name ("acomms.v1.MacConfig.slot") -> its rule.
 const std::map<std::string, RepeatedFieldRule>& repeated_rules();
 
