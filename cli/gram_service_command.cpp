@@ -34,6 +34,7 @@ struct DepthOptions {
   // 0.51 m/s: 20 deg of pitch at 1.5 m/s (1.5 sin 20 deg).
   double forecast_horizon_s = NAN, current_depth_m = 0, vertical_speed_mps = 0.51, caustic_uncertainty_m = 50;
   double leg_end_m = NAN;
+  double reception_snr50_db = NAN, reception_slope_per_db = 0;
 };
 
 struct EnvOptions {
@@ -71,6 +72,9 @@ void print_objective(const v1::DepthObjectiveResponse& response) {
                 "at the next window be at %.2f m\n",
                 f.forecast_horizon_s(), f.columns_size(), f.choice().c_str(), f.target_depth_m(), f.target_time_s(),
                 f.target_objective(), f.vertical_rate_mps(), f.next_depth_m());
+    std::printf("# plan (depth at each window, m; mean score %.4f):", f.expected_score());
+    for (int k = 0; k < f.path_depth_m_size(); ++k) std::printf("%s %.1f", k ? "," : "", f.path_depth_m(k));
+    std::printf("\n");
   }
 }
 
@@ -110,8 +114,14 @@ void run_depth(const DepthOptions& o, const GlobalOptions& global) {
     f->set_vertical_speed_mps(o.vertical_speed_mps);
     f->set_caustic_uncertainty_m(o.caustic_uncertainty_m);
     if (!std::isnan(o.leg_end_m)) f->set_leg_end_range_m(o.leg_end_m);
-  } else if (!std::isnan(o.leg_end_m)) {
-    throw UsageError("--leg-end needs the forecast: give --forecast-horizon");
+    if (!std::isnan(o.reception_snr50_db)) {
+      if (std::isnan(o.source_level_db))
+        throw UsageError("--reception-snr50 needs the sonar equation: give --source-level and --noise-level");
+      f->set_reception_snr50_db(o.reception_snr50_db);
+      f->set_reception_slope_per_db(o.reception_slope_per_db);
+    }
+  } else if (!std::isnan(o.leg_end_m) || !std::isnan(o.reception_snr50_db)) {
+    throw UsageError("--leg-end and --reception-snr50 need the forecast: give --forecast-horizon");
   }
   auto stub = gram_stub(global);
   grpc::ClientContext context;
@@ -230,10 +240,18 @@ void add_gram_service_commands(CLI::App& gram, const GlobalOptions& options) {
       ->capture_default_str();
   depth->add_option("--leg-end", d.leg_end_m,
                     "Forecast: the range (m) where the vehicle's leg ends (a turn): no window past it is forecast");
+  depth->add_option("--reception-snr50", d.reception_snr50_db,
+                    "Forecast with the sonar equation: the modem's SNR (dB) at which half the packets decode; the "
+                    "plan then maximises the packets expected (default: the objective)");
+  depth->add_option("--reception-slope", d.reception_slope_per_db,
+                    "Forecast: the reception curve's logistic slope (1/dB; 0: 1)")
+      ->capture_default_str();
   depth->footer(
       "Examples:\n  acommsctl gram depth --range 3000 --speed 1.5 --max-depth 90 --min-altitude 5 --lowpass 0.02\n"
       "  acommsctl gram depth --range 30000 --speed 1.5 --max-depth 4900 --forecast-horizon 3600 --current-depth 20 "
-      "--leg-end 60000");
+      "--leg-end 60000\n"
+      "  acommsctl gram depth --range 30000 --speed 1.5 --max-depth 4800 --source-level 190 --noise-level 93 "
+      "--noise-decrease 3 --forecast-horizon 3600 --current-depth 20 --reception-snr50 10");
   depth->callback([&options] { run_depth(depth_options, options); });
 
   CLI::App* env = gram.add_subcommand("env", "The environment the daemon holds: show it, or feed it CTD casts");

@@ -201,7 +201,7 @@ void add_sim_depth_adaptation_command(CLI::App* sim, const GlobalOptions& global
                       "Schneider 2013 4.4; 3 is typical); the adaptive vehicles then rank depths by signal excess");
   command->add_flag("--forecast", c.forecast,
                     "Also run the forecast strategy (deep water, Schneider 2013 4.4): plan over --forecast-horizon, "
-                    "stay on a ridge, else the reachable optimum of least pitch without crossing a shadow zone");
+                    "the depth path of most packets expected within the vertical speed (shadows score 0)");
   command->add_option("--forecast-horizon", c.forecast_horizon_s, "How far ahead the forecast looks, s")
       ->capture_default_str();
   command->add_option("--caustic-uncertainty", c.caustic_uncertainty_m,

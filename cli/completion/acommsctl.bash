@@ -405,9 +405,9 @@ _acommsctl() {
         --ca) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --cert) COMPREPLY=($(compgen -f -- "$cur")); return ;;
         --key) COMPREPLY=($(compgen -f -- "$cur")); return ;;
-        --range|--speed|--heading|--horizon|--h-max|--min-depth|--max-depth|--min-altitude|--lowpass|--source-level|--noise-level|--array-gain|--threshold|--source-depth|--consumer|--deadline|--noise-decrease|--forecast-horizon|--current-depth|--vertical-speed|--caustic-uncertainty|--leg-end|--timeout) COMPREPLY=(); return ;;
+        --range|--speed|--heading|--horizon|--h-max|--min-depth|--max-depth|--min-altitude|--lowpass|--source-level|--noise-level|--array-gain|--threshold|--source-depth|--consumer|--deadline|--noise-decrease|--forecast-horizon|--current-depth|--vertical-speed|--caustic-uncertainty|--leg-end|--reception-snr50|--reception-slope|--timeout) COMPREPLY=(); return ;;
       esac
-      COMPREPLY=($(compgen -W "--help -h --range --speed --heading --horizon --h-max --h-max-window --min-depth --max-depth --min-altitude --lowpass --zero-phase --source-level --noise-level --array-gain --threshold --source-depth --consumer --deadline --png --noise-decrease --forecast-horizon --current-depth --vertical-speed --caustic-uncertainty --leg-end --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
+      COMPREPLY=($(compgen -W "--help -h --range --speed --heading --horizon --h-max --h-max-window --min-depth --max-depth --min-altitude --lowpass --zero-phase --source-level --noise-level --array-gain --threshold --source-depth --consumer --deadline --png --noise-decrease --forecast-horizon --current-depth --vertical-speed --caustic-uncertainty --leg-end --reception-snr50 --reception-slope --socket -s --timeout --json --ca --cert --key --insecure" -- "$cur")) ;;
     "gram env")
       case "$prev" in
         -s|--socket) COMPREPLY=($(compgen -f -- "$cur")); return ;;

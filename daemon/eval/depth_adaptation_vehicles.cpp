@@ -80,6 +80,9 @@ std::vector<double> forecast_depths(const gram::TransmissionLoss& tl, const gram
   request.forecast->forecast_horizon_s = c.forecast_horizon_s;
   request.forecast->caustic_uncertainty_m = c.caustic_uncertainty_m;
   request.forecast->options.vertical_speed_mps = c.vertical_speed_mps;
+  // The modem's reception curve (the vehicle knows its own modem, as it
+  // knows SL and NL): the plan maximises the expected packets received.
+  if (request.sonar) request.forecast->reception = c.physics.curve(c.rate);
   const std::span<const gram::TransmissionLoss> instances(&tl, 1);
   return fly(c, packets, path, [&](double t, double depth, double) {
     request.range_m = run.range(t);

@@ -10,9 +10,11 @@
 //   - next window ("adaptive", Schneider (2013) §4.3): the best depth of
 //     the next window (gram/depth_objective.h), approached at full vertical
 //     speed; with nothing predicted to receive it keeps its last target;
-//   - forecast (§4.4, gram/depth_forecast.h): the plan over the forecast
-//     horizon; it heads for the depth the plan puts it at by the next
-//     decision (on a straight path, so within the vertical speed). Its
+//   - forecast (§4.4, gram/depth_forecast.h): the path planned over the
+//     forecast horizon (with the modem's reception curve when it ranks by
+//     the sonar equation, so the plan maximises the packets it expects);
+//     it heads for the depth the plan puts it at by the next decision
+//     (reachable by construction, so within the vertical speed). Its
 //     leg ends at the turn (going out) or at the start range (coming
 //     back): the forecast does not look at windows it will not cross.
 // With a noise decrease over depth the objective is the sonar equation's

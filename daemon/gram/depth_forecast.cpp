@@ -1,8 +1,11 @@
-// The forecast strategy (see depth_forecast.h).
+// The forecast strategy: a path planner over the forecast field (see
+// depth_forecast.h).
 #include "gram/depth_forecast.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <stdexcept>
 
 #include "gram/validation_text.h"
@@ -10,7 +13,12 @@
 namespace acomms::gram {
 namespace {
 
-constexpr double kReachSlack_m = 1e-6;  // rounding in w·t
+constexpr double kMaxPlanStep_m = 10;      // the plan's depth grid is at least this fine
+constexpr long kMaxStepsPerReach = 16;     // and no finer than w·Δt / this (bounds the work)
+constexpr double kMaxPlanNodes = 4000;     // nor finer than the field's depths / this
+constexpr std::size_t kMaxTerminalSteps = 480;  // nor longer past the horizon than this many columns
+constexpr double kMaxTerminal_s = 86400;   // a day: bounds the plan's length
+constexpr double kNever = -std::numeric_limits<double>::infinity();
 
 // Linear interpolation over the field's depths, level beyond the ends.
 double at_depth(const std::vector<double>& depth, const std::vector<double>& value, double z) {
@@ -22,129 +30,155 @@ double at_depth(const std::vector<double>& depth, const std::vector<double>& val
 }
 
 std::size_t nearest(const std::vector<double>& depth, double z) {
-  std::size_t best = 0;
-  for (std::size_t j = 1; j < depth.size(); ++j)
-    if (std::abs(depth[j] - z) < std::abs(depth[best] - z)) best = j;
-  return best;
+  const auto hi = static_cast<std::size_t>(std::lower_bound(depth.begin(), depth.end(), z) - depth.begin());
+  if (hi == 0) return 0;
+  if (hi == depth.size()) return hi - 1;
+  return z - depth[hi - 1] <= depth[hi] - z ? hi - 1 : hi;
 }
 
+// The plan over layers: layer l is the time t_l (the field's columns, then
+// `extra` copies of the last column's spacing with its field frozen), node
+// i the depth z0 + (i − start) h.
 class Planner {
  public:
-  Planner(const ForecastField& f, double z0, const ForecastOptions& o) : f_(f), z0_(z0), o_(o) {}
-
-  bool shadow(std::size_t k, double z) const {
-    return !f_.allowed[k][nearest(f_.depth_m, z)] || at_depth(f_.depth_m, f_.raw[k], z) <= o_.shadow_objective;
-  }
-
-  // Local maxima of the steering objective over the allowed depths of
-  // column k that are not in shadow.
-  std::vector<std::size_t> peaks(std::size_t k) const {
-    std::vector<std::size_t> out;
-    const auto& s = f_.steer[k];
-    const std::size_t n = s.size();
-    for (std::size_t j = 0; j < n; ++j) {
-      if (!f_.allowed[k][j] || s[j] <= 0 || f_.raw[k][j] <= o_.shadow_objective) continue;
-      // At least its neighbours, and above one of them (a plateau's inside
-      // is no ridge; an end of the allowed depths has one neighbour).
-      const bool has_above = j > 0 && f_.allowed[k][j - 1], has_below = j + 1 < n && f_.allowed[k][j + 1];
-      if (has_above && s[j] < s[j - 1]) continue;
-      if (has_below && s[j] < s[j + 1]) continue;
-      const bool rises = (has_above && s[j] > s[j - 1]) || (has_below && s[j] > s[j + 1]) || (!has_above && !has_below);
-      if (rises) out.push_back(j);
+  Planner(const ForecastField& f, double z0, const ForecastOptions& o) : f_(f), z0_(z0), o_(o) {
+    const std::size_t n = f_.time_s.size();
+    double min_dt = INFINITY;
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+      dt_.push_back(f_.time_s[k + 1] - f_.time_s[k]);
+      min_dt = std::min(min_dt, dt_.back());
     }
-    return out;
+    const double last_dt = dt_.back();
+    // The terminal value: the last column's field held for terminal_s more
+    // (by default as long as crossing the field's depths takes).
+    const double terminal_s = o_.terminal_s ? *o_.terminal_s
+                                            : (f_.depth_m.back() - f_.depth_m.front()) / o_.vertical_speed_mps;
+    const auto extra =
+        std::min(kMaxTerminalSteps, static_cast<std::size_t>(std::ceil(terminal_s / last_dt - 1e-9)));
+    for (std::size_t e = 0; e < extra; ++e) dt_.push_back(last_dt);
+    last_dt_ = last_dt;
+    // The plan's step divides the shortest reach, no coarser than 10 m or the field.
+    double spacing = kMaxPlanStep_m;
+    for (std::size_t j = 1; j < f_.depth_m.size(); ++j) spacing = std::min(spacing, f_.depth_m[j] - f_.depth_m[j - 1]);
+    const double reach = o_.vertical_speed_mps * min_dt;
+    const long per_reach = std::clamp(static_cast<long>(std::ceil(reach / spacing - 1e-9)), 1L, kMaxStepsPerReach);
+    h_ = std::max(reach / static_cast<double>(per_reach),
+                  (f_.depth_m.back() - f_.depth_m.front()) / kMaxPlanNodes);
+    const long up = std::max(0L, static_cast<long>(std::floor((z0_ - f_.depth_m.front()) / h_ + 1e-9)));
+    const long down = std::max(0L, static_cast<long>(std::floor((f_.depth_m.back() - z0_) / h_ + 1e-9)));
+    start_ = static_cast<std::size_t>(up);
+    nodes_ = static_cast<std::size_t>(up + down + 1);
+    // (At most 127 grid steps a column: uneven columns plan a little slow.)
+    for (double dt : dt_)
+      moves_.push_back(std::min(127L, static_cast<long>(std::floor(o_.vertical_speed_mps * dt / h_ + 1e-9))));
+    // Each column's score on the plan's grid (−inf: forbidden).
+    value_.assign(n, std::vector<double>(nodes_, kNever));
+    for (std::size_t k = 0; k < n; ++k)
+      for (std::size_t i = 0; i < nodes_; ++i) value_[k][i] = cell(k, depth(i), i == start_ && k == 0);
   }
 
-  // The ridge the vehicle is on, followed to the last column; nullopt when
-  // it is on none or the ridge ends (or falls into shadow) within the horizon.
-  std::optional<std::vector<std::size_t>> ridge() const {
-    if (f_.time_s.size() < 2) return std::nullopt;
-    const auto here = peaks(0);
-    if (here.empty()) return std::nullopt;
-    std::size_t j = here[0];
-    for (std::size_t p : here)
-      if (std::abs(f_.depth_m[p] - z0_) < std::abs(f_.depth_m[j] - z0_)) j = p;
-    const double own = at_depth(f_.depth_m, f_.steer[0], z0_);
-    if (own < f_.steer[0][j] - o_.ridge_tolerance || shadow(0, z0_)) return std::nullopt;
-    std::vector<std::size_t> track{j};
-    for (std::size_t k = 1; k < f_.time_s.size(); ++k) {
-      // A ridge is worth staying on while it stays high: within the
-      // tolerance of the best the vehicle could reach by then.
-      const double reach = o_.vertical_speed_mps * (f_.time_s[k] - f_.time_s[k - 1]) + kReachSlack_m;
-      const double from = k == 1 ? z0_ : f_.depth_m[track.back()];
-      std::optional<std::size_t> next;
-      for (std::size_t p : peaks(k)) {
-        const double d = std::abs(f_.depth_m[p] - from);
-        if (d <= reach && (!next || d < std::abs(f_.depth_m[*next] - from))) next = p;
-      }
-      if (!next || f_.steer[k][*next] < best_reachable(k) - o_.ridge_tolerance) return std::nullopt;
-      track.push_back(*next);
+  double depth(std::size_t i) const { return z0_ + (static_cast<double>(i) - static_cast<double>(start_)) * h_; }
+
+  ForecastDecision plan() const {
+    const std::size_t n = f_.time_s.size(), layers = dt_.size() + 1;
+    auto column = [&](std::size_t l) { return std::min(l, n - 1); };
+    // Backward: best[i] = the most a path from node i at layer l gathers.
+    std::vector<double> best(nodes_), next(nodes_);
+    for (std::size_t i = 0; i < nodes_; ++i) {
+      const double v = value_[n - 1][i];
+      best[i] = v == kNever ? kNever : v * last_dt_;
     }
-    return track;
-  }
-
-  // The largest steering objective of column k within reach of z0 by t_k.
-  double best_reachable(std::size_t k) const {
-    const double reach = o_.vertical_speed_mps * f_.time_s[k] + kReachSlack_m;
-    double best = 0;
-    for (std::size_t j = 0; j < f_.depth_m.size(); ++j)
-      if (f_.allowed[k][j] && std::abs(f_.depth_m[j] - z0_) <= reach) best = std::max(best, f_.steer[k][j]);
-    return best;
-  }
-
-  // True when the straight path from (0, z0) to (t_k, z) enters a shadow
-  // after having been out of one.
-  bool crosses_shadow(std::size_t k, double z) const {
-    bool lit = false;
-    for (std::size_t i = 0; i <= k; ++i) {
-      const double zi = z0_ + (z - z0_) * f_.time_s[i] / f_.time_s[k];
-      const bool dark = shadow(i, zi);
-      if (dark && lit) return true;
-      lit = lit || !dark;
-    }
-    return false;
-  }
-
-  ForecastDecision optimum() const {
-    struct Candidate {
-      std::size_t k, j;
-      double value, rate;
-    };
-    std::vector<Candidate> ok;
-    for (std::size_t k = 1; k < f_.time_s.size(); ++k) {
-      const double reach = o_.vertical_speed_mps * f_.time_s[k] + kReachSlack_m;
-      for (std::size_t j = 0; j < f_.depth_m.size(); ++j) {
-        const double z = f_.depth_m[j];
-        if (!f_.allowed[k][j] || f_.steer[k][j] <= 0 || f_.raw[k][j] <= o_.shadow_objective) continue;
-        if (std::abs(z - z0_) > reach || crosses_shadow(k, z)) continue;
-        ok.push_back({k, j, f_.steer[k][j], std::abs(z - z0_) / f_.time_s[k]});
+    std::vector<std::vector<std::int8_t>> move(layers - 1, std::vector<std::int8_t>(nodes_, 0));
+    for (std::size_t l = layers - 1; l-- > 0;) {
+      next.swap(best);
+      const std::vector<double>& v = value_[column(l)];
+      for (std::size_t i = 0; i < nodes_; ++i) {
+        best[i] = kNever;
+        if (v[i] == kNever || (l == 0 && i != start_)) continue;
+        for (long m = 0; m <= moves_[l]; ++m)
+          for (long sign : {-1L, 1L}) {
+            if (m == 0 && sign > 0) continue;  // ties go to the smallest move, up first
+            const long j = static_cast<long>(i) + sign * m;
+            if (j < 0 || j >= static_cast<long>(nodes_) || next[j] == kNever) continue;
+            const double gathered = dt_[l] * 0.5 * (v[i] + v[j]) + next[j];
+            if (best[i] == kNever || gathered > best[i] + 1e-12 * std::max(1.0, std::abs(best[i]))) {
+              best[i] = gathered;
+              move[l][i] = static_cast<std::int8_t>(sign * m);
+            }
+          }
       }
     }
     ForecastDecision d;
     d.target_depth_m = z0_;
-    if (ok.empty()) return d;  // hold
-    double best = 0;
-    for (const Candidate& c : ok) best = std::max(best, c.value);
-    // The earliest column holding a near-best point, and in it the least
-    // pitch (ok is in order of column, then depth: ties go shallowest).
-    const Candidate* pick = nullptr;
-    for (const Candidate& c : ok) {
-      if (c.value < best * (1 - o_.optimum_tolerance)) continue;
-      if (pick && c.k != pick->k) break;
-      if (!pick || c.rate < pick->rate) pick = &c;
+    d.path_time_s = f_.time_s;
+    d.path_depth_m.assign(n, z0_);
+    if (best[start_] == kNever || best[start_] <= 0) return d;  // hold: nothing ahead receives
+    std::vector<std::size_t> node{start_};
+    for (std::size_t l = 0; l + 1 < n; ++l) node.push_back(static_cast<std::size_t>(static_cast<long>(node.back()) + move[l][node.back()]));
+    double sum = 0, span = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      d.path_depth_m[k] = depth(node[k]);
+      const double dt = k + 1 < n ? dt_[k] : last_dt_;
+      const double s = k + 1 < n ? 0.5 * (value_[k][node[k]] + value_[k][node[k + 1]]) : value_[k][node[k]];
+      sum += dt * s;
+      span += dt;
     }
-    d.choice = ForecastChoice::kOptimum;
-    d.target_depth_m = f_.depth_m[pick->j];
-    d.target_time_s = f_.time_s[pick->k];
-    d.target_objective = pick->value;
-    d.vertical_rate_mps = pick->rate;
+    d.expected_score = sum / span;
+    d.choice = on_ridge(node) ? ForecastChoice::kRidge : ForecastChoice::kOptimum;
+    // The target: the plan's best point after now, the earliest.
+    std::size_t at = n > 1 ? 1 : 0;
+    for (std::size_t k = 1; k < n; ++k)
+      if (value_[k][node[k]] > value_[at][node[at]]) at = k;
+    d.target_depth_m = depth(node[at]);
+    d.target_time_s = f_.time_s[at];
+    d.target_objective = value_[at][node[at]];
+    d.vertical_rate_mps = d.target_time_s > 0 ? std::abs(d.target_depth_m - z0_) / d.target_time_s : 0;
     return d;
   }
 
  private:
+  // The score of column k at depth z: −inf where the limits forbid it
+  // (the vehicle's own depth now excepted: it is there), 0 in shadow.
+  double cell(std::size_t k, double z, bool own) const {
+    const bool inside = z >= f_.depth_m.front() - 1e-9 && z <= f_.depth_m.back() + 1e-9;
+    const bool allowed = inside && f_.allowed[k][nearest(f_.depth_m, z)];
+    if (!allowed && !own) return kNever;
+    if (!allowed || at_depth(f_.depth_m, f_.raw[k], z) <= o_.shadow_objective) return 0;
+    const auto& s = f_.score.empty() ? f_.steer[k] : f_.score[k];
+    return std::clamp(at_depth(f_.depth_m, s, z), 0.0, 1.0);
+  }
+
+  // On a ridge: at every column of the plan its depth scores above 0 and
+  // within ridge_tolerance of the best within one field spacing around it,
+  // in that column or the one before (a column's time ends one window and
+  // starts the next: a plan on a moving ridge sits between the two).
+  bool on_ridge(const std::vector<std::size_t>& node) const {
+    double spacing = 0;
+    for (std::size_t j = 1; j < f_.depth_m.size(); ++j) spacing = std::max(spacing, f_.depth_m[j] - f_.depth_m[j - 1]);
+    const auto around = static_cast<long>(std::ceil(std::max(spacing, h_) / h_ - 1e-9));
+    auto near_top = [&](std::size_t k, std::size_t i) {
+      const double here = value_[k][i];
+      if (!(here > 0)) return false;
+      for (long m = -around; m <= around; ++m) {
+        const long j = static_cast<long>(i) + m;
+        if (j >= 0 && j < static_cast<long>(nodes_) && value_[k][j] > here + o_.ridge_tolerance) return false;
+      }
+      return true;
+    };
+    for (std::size_t k = 0; k < node.size(); ++k)
+      if (!near_top(k, node[k]) && !(k > 0 && near_top(k - 1, node[k]))) return false;
+    return true;
+  }
+
   const ForecastField& f_;
   double z0_;
   const ForecastOptions& o_;
+  std::vector<double> dt_;  // per step between layers
+  double last_dt_ = 0;
+  double h_ = 0;
+  std::size_t start_ = 0, nodes_ = 0;
+  std::vector<long> moves_;                 // per step: how many grid steps w·Δt allows
+  std::vector<std::vector<double>> value_;  // [column][node]
 };
 
 }  // namespace
@@ -159,17 +193,12 @@ const char* forecast_choice_name(ForecastChoice choice) {
 }
 
 double ForecastDecision::depth_after(double z0, double dt) const {
-  if (choice == ForecastChoice::kHold || dt <= 0) return z0;
-  if (choice == ForecastChoice::kOptimum) {
-    if (dt >= target_time_s) return target_depth_m;
-    return z0 + (target_depth_m - z0) * dt / target_time_s;
-  }
-  // Along the ridge: from (0, z0) through its depth in each later column.
+  if (choice == ForecastChoice::kHold || dt <= 0 || path_time_s.size() < 2) return z0;
   double t_prev = 0, z_prev = z0;
-  for (std::size_t k = 1; k < ridge_time_s.size(); ++k) {
-    if (dt <= ridge_time_s[k]) return z_prev + (ridge_depth_m[k] - z_prev) * (dt - t_prev) / (ridge_time_s[k] - t_prev);
-    t_prev = ridge_time_s[k];
-    z_prev = ridge_depth_m[k];
+  for (std::size_t k = 1; k < path_time_s.size(); ++k) {
+    if (dt <= path_time_s[k]) return z_prev + (path_depth_m[k] - z_prev) * (dt - t_prev) / (path_time_s[k] - t_prev);
+    t_prev = path_time_s[k];
+    z_prev = path_depth_m[k];
   }
   return z_prev;
 }
@@ -182,13 +211,15 @@ std::optional<std::string> validate_forecast_field(const ForecastField& f) {
   for (std::size_t k = 1; k < f.time_s.size(); ++k)
     if (!(f.time_s[k] > f.time_s[k - 1])) return "the forecast field's times must be strictly increasing";
   const std::size_t nk = f.time_s.size(), nj = f.depth_m.size();
-  if (f.steer.size() != nk || f.raw.size() != nk || f.allowed.size() != nk)
-    return "the forecast field needs one steer, raw and allowed column per time";
+  if (f.steer.size() != nk || f.raw.size() != nk || f.allowed.size() != nk || (!f.score.empty() && f.score.size() != nk))
+    return "the forecast field needs one steer, raw, allowed (and score, if any) column per time";
   for (std::size_t k = 0; k < nk; ++k) {
-    if (f.steer[k].size() != nj || f.raw[k].size() != nj || f.allowed[k].size() != nj)
+    if (f.steer[k].size() != nj || f.raw[k].size() != nj || f.allowed[k].size() != nj ||
+        (!f.score.empty() && f.score[k].size() != nj))
       return "forecast column " + std::to_string(k) + " does not have one value per depth";
     for (std::size_t j = 0; j < nj; ++j)
-      if (!std::isfinite(f.steer[k][j]) || !std::isfinite(f.raw[k][j]))
+      if (!std::isfinite(f.steer[k][j]) || !std::isfinite(f.raw[k][j]) ||
+          (!f.score.empty() && !std::isfinite(f.score[k][j])))
         return "forecast column " + std::to_string(k) + " holds a value that is not finite";
   }
   return std::nullopt;
@@ -197,8 +228,9 @@ std::optional<std::string> validate_forecast_field(const ForecastField& f) {
 std::optional<std::string> validate_forecast_options(const ForecastOptions& o) {
   if (auto e = require_greater("vertical_speed_mps", o.vertical_speed_mps, 0.0)) return e;
   if (!(o.ridge_tolerance >= 0 && o.ridge_tolerance <= 1)) return "ridge_tolerance must be in [0, 1]";
-  if (!(o.optimum_tolerance >= 0 && o.optimum_tolerance <= 1)) return "optimum_tolerance must be in [0, 1]";
   if (!(o.shadow_objective >= 0 && o.shadow_objective < 1)) return "shadow_objective must be in [0, 1)";
+  if (o.terminal_s && !(*o.terminal_s >= 0 && *o.terminal_s <= kMaxTerminal_s))
+    return "terminal_s must be in [0, " + format_number(kMaxTerminal_s) + "] s";
   return std::nullopt;
 }
 
@@ -214,6 +246,8 @@ std::optional<std::string> validate_depth_forecast_request(const DepthForecastRe
     return "leg_end_range_m must be finite and at least 0";
   if (auto e = require_at_least("current_depth_m", r.current_depth_m, 0.0)) return e;
   if (auto e = require_at_least("caustic_uncertainty_m", r.caustic_uncertainty_m, 0.0)) return e;
+  if (r.reception)
+    if (auto e = validate_reception_curve(*r.reception, "reception_")) return e;
   return validate_forecast_options(r.options);
 }
 
@@ -221,19 +255,14 @@ ForecastDecision forecast_depth(const ForecastField& field, double z0, const For
   if (auto e = validate_forecast_field(field)) throw std::invalid_argument(*e);
   if (auto e = validate_forecast_options(options)) throw std::invalid_argument(*e);
   if (!std::isfinite(z0)) throw std::invalid_argument("current_depth_m must be finite");
-  const Planner planner(field, z0, options);
-  if (auto track = planner.ridge()) {
+  if (field.time_s.size() < 2) {  // the window now only: nothing to plan
     ForecastDecision d;
-    d.choice = ForecastChoice::kRidge;
-    for (std::size_t j : *track) d.ridge_depth_m.push_back(field.depth_m[j]);
-    d.ridge_time_s = field.time_s;
-    d.target_depth_m = d.ridge_depth_m[1];
-    d.target_time_s = field.time_s[1];
-    d.target_objective = field.steer[1][(*track)[1]];
-    d.vertical_rate_mps = std::abs(d.target_depth_m - z0) / d.target_time_s;
+    d.target_depth_m = z0;
+    d.path_time_s = field.time_s;
+    d.path_depth_m = {z0};
     return d;
   }
-  return planner.optimum();
+  return Planner(field, z0, options).plan();
 }
 
 }  // namespace acomms::gram

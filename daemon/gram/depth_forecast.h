@@ -1,43 +1,68 @@
 // The forecast strategy of the depth objective, for deep water (Schneider
 // (2013) §4.4, the behaviour he calls BHV_MaxSNRDepth; our reading of his
-// description, spec §6.4 for the bias).
+// description, generalised to a path planner; spec §6.4 for the bias).
 //
 // Problem: in deep water a vehicle changes depth slowly (tens of minutes
 // for a kilometre) while the objective's good depths move along range, and
 // a convergence zone's caustic has its shadow zone right above it. Chasing
 // the best depth of the next window (best_depth.h) keeps the vehicle in
 // transit between far-apart maxima, often through a shadow.
-// Decision: look at the objective over the windows ahead (a "field", one
-// column per window, up to a forecast horizon), and
-//   1. if the vehicle is on a ridge (a local maximum over depth, at least
-//      its neighbours and above one of them, the nearest to it; it is on it
-//      when its own objective is within
-//      `ridge_tolerance` of the peak's value) and that
-//      ridge can be followed, within the vertical speed, across every column
-//      to the horizon, staying high (in each column within `ridge_tolerance`
-//      of the best the vehicle could reach by then: "a ridge of high
-//      objective", not any bump that fades), it stays on the ridge;
-//   2. otherwise it targets the optimum within the horizon that it can
-//      reach: among points (column k ≥ 1, depth z) with |z − z₀| ≤ w t_k
-//      whose straight path from (0, z₀) does not cross a shadow zone, the
-//      best objective B; the target is the EARLIEST point near it (at least
-//      (1 − `optimum_tolerance`) B), and in its column the least pitch
-//      |z − z₀| / t_k (then the shallowest). Why earliest and not the least
-//      pitch over the whole horizon, the thesis's words: re-planned every
-//      τ_a, a least-pitch target is nearly always the latest column, so the
-//      vehicle creeps toward points it never reaches and cuts across a
-//      curved band of good depths (measured on the deep Munk replay,
-//      tests/unit/eval/deep_forecast_test.cpp: 0.24 received with least
-//      pitch, 0.43 with the earliest, at 0.51 m/s);
-//   3. with no such point (nothing ahead receives) it holds its depth.
-// "Crossing" a shadow zone: a shadow point on the path after a point that
-// is not in shadow (a vehicle that starts in a shadow may leave it). Points
-// the limits forbid count as shadow (the path may not touch the bottom).
-// The bias towards depth against caustic uncertainty is in the field: its
-// steering objective is low-passed from the surface down (spec §6.4) by the
-// caller (depth_forecast_field.h); the shadow test uses the raw objective.
-// Invariants: the target is an allowed grid depth reachable in its time at
-// the vertical speed; the result depends on nothing but the arguments.
+// What the thesis asks, as we read it: stay on a ridge of high objective
+// the vehicle is on; otherwise head for the optimum within the horizon it
+// can reach with the least pitch without crossing a shadow zone; bias
+// towards depth against caustic uncertainty. Implemented literally (one
+// TARGET point: the ridge, else the earliest near-best reachable point) it
+// does not meet issue 32's criterion on the deep Munk replay
+// (tests/unit/eval/deep_forecast_test.cpp: 0.478 received against the next
+// window's 0.752 at NL 93): a target is one point, but the packets are the
+// whole path, and the straight path to a point cuts across the curving
+// band of good depths that a greedy next-window choice follows.
+// Decision: plan the PATH. Over the field (one column per window ahead,
+// up to the forecast horizon) a dynamic programme (Viterbi) over columns ×
+// depths chooses the depth at each column time that maximises the summed
+// score of the windows the vehicle crosses, moving at most w·Δt between
+// columns:
+//   - the score is monotone in the chance of reception: the probability of
+//     decoding when the caller gives the modem's reception curve with a
+//     sonar-equation objective (depth_forecast_field.h), otherwise the
+//     steering objective in [0, 1]. Not a linear signal excess: a path
+//     with 30 dB in half its windows and 0 dB in the rest would "beat" one
+//     with 15 dB throughout, yet receives half as much (a trial summing
+//     the objective received 0.55 where the next window receives 0.75);
+//   - a window's score is the mean of its score at the path's depths at
+//     the window's start and end (the vehicle crosses it in transit);
+//   - a shadow (raw objective ≤ shadow_objective) scores 0 and depths the
+//     limits forbid are not on any path, so a path through a shadow zone
+//     loses the windows it spends there and a lit path to the same good
+//     depths wins: the thesis's "without crossing a shadow zone" as a
+//     consequence, not a rule; and a ridge the vehicle is on that stays
+//     high is kept because no path receives more by leaving it;
+//   - the horizon's end is not the end of the run: beyond the last column
+//     its field is assumed to last `terminal_s` more (a terminal value; by
+//     default the time to cross the field's depths), so that a good band
+//     out of reach within the horizon (a 3 km dive at 0.5 m/s takes 100
+//     minutes) still draws the vehicle toward it. Without it the plan
+//     from 20 m on the deep replay holds near the surface (nothing within
+//     an hour's reach receives): 0.58-0.60 received, the earlier trial's
+//     figure;
+//   - the bias towards depth stays in the field: its steering objective is
+//     low-passed from the surface down (spec §6.4) by the caller
+//     (depth_forecast_field.h), and the score derives from it.
+// The path is planned on a depth grid of its own, from the vehicle's depth
+// in steps that divide w·Δt (≤ 10 m, and no coarser than the field), with
+// the field's values interpolated linearly, so the plan's next depth is
+// exactly reachable. Ties go to the smallest move. The work is bounded
+// whatever the request: at most 4000 plan depths (a vehicle slower than
+// a 4000th of the field's depths per column plans as if it could not
+// move), 16 plan steps per reach, and 480 columns past the horizon.
+// The choice reported: "ridge" when the vehicle is on a local maximum of
+// the score and the whole plan stays on one (within ridge_tolerance of the
+// best within a field spacing), "optimum" when the plan leaves for better
+// depths (the target: the plan's best point, the earliest), "hold" when
+// nothing ahead is predicted to receive.
+// Invariants: every planned depth is allowed (but the vehicle's own) and
+// reachable from the previous one at the vertical speed; the result
+// depends on nothing but the arguments.
 // Thread-safe: pure functions.
 #pragma once
 
@@ -46,6 +71,7 @@
 #include <vector>
 
 #include "gram/range_window.h"
+#include "gram/reception_curve.h"
 
 namespace acomms::gram {
 
@@ -57,17 +83,20 @@ struct ForecastField {
   std::vector<std::vector<double>> steer;
   std::vector<std::vector<double>> raw;
   std::vector<std::vector<bool>> allowed;
+  // [column][depth], in [0, 1], monotone in the chance of reception: what
+  // the path maximises. Empty: the steering objective.
+  std::vector<std::vector<double>> score;
 };
 
 struct ForecastOptions {
   double vertical_speed_mps = 0.75;  // w, > 0
-  double ridge_tolerance = 0.05;     // [0, 1]
-  // [0, 1], relative to the best B: points of at least (1 − this) B are
-  // near-best. 0: the strict optimum. 0.1: the objective's scale is the
-  // signal excess over the horizon's best, so 10% of it (about 2 dB of a
-  // 20 dB margin) is within the model's error at a caustic.
-  double optimum_tolerance = 0.1;
+  double ridge_tolerance = 0.05;     // [0, 1], of the score: what counts as staying on a ridge
   double shadow_objective = 0.0;     // raw objective at or below: shadow, [0, 1)
+  // The terminal value: beyond the last column its field is assumed to
+  // hold this many seconds more, in [0, 86400] (0: the plan ends at the
+  // horizon). Unset: as long as crossing the field's depths takes at w, so
+  // that any band at any depth can draw the vehicle.
+  std::optional<double> terminal_s;
 };
 
 enum class ForecastChoice { kRidge, kOptimum, kHold };
@@ -75,16 +104,20 @@ const char* forecast_choice_name(ForecastChoice choice);  // "ridge", "optimum",
 
 struct ForecastDecision {
   ForecastChoice choice = ForecastChoice::kHold;
+  // The plan's best point (the earliest of its best); kHold: the vehicle's
+  // depth, time 0.
   double target_depth_m = 0;
-  double target_time_s = 0;  // 0 with kHold
-  double target_objective = 0;
-  double vertical_rate_mps = 0;
-  // kRidge: the ridge's depth in each column (the path it follows).
-  std::vector<double> ridge_depth_m;
-  // Where to be `dt` seconds from now: on the straight path to the target
-  // (on a ridge: along the ridge's path), then at the target.
+  double target_time_s = 0;
+  double target_objective = 0;  // its score
+  double vertical_rate_mps = 0;  // |target − current| / target_time_s
+  // The plan: its depth at each column's time (path_depth_m[0] = the
+  // vehicle's), and its mean score per window over the horizon.
+  std::vector<double> path_time_s;
+  std::vector<double> path_depth_m;
+  double expected_score = 0;
+  // Where to be `dt` seconds from now: along the plan, linearly between
+  // its columns, then at its last depth.
   double depth_after(double current_depth_m, double dt) const;
-  std::vector<double> ridge_time_s;
 };
 
 std::optional<std::string> validate_forecast_field(const ForecastField& field);
@@ -107,6 +140,11 @@ struct DepthForecastRequest {
   // the windows beyond it are not where the vehicle will be, so the
   // forecast stops there (the next window is kept). Unset: no end.
   std::optional<double> leg_end_range_m;
+  // The modem's reception curve (P(decode | SNR), reception_curve.h), with
+  // the sonar-equation objective (SNR: its signal excess SL − H − NL + AG):
+  // the plan then maximises the expected number of packets received.
+  // Unset: it maximises the steering objective.
+  std::optional<ReceptionCurve> reception;
 };
 
 struct DepthForecastResult {

@@ -52,12 +52,13 @@ DepthForecastResult compute_depth_forecast(std::span<const TransmissionLoss> ins
       }
   }
   std::vector<double> scale(answers.size(), 1.0);
+  double se0 = 0, top = 0;
   if (request.sonar) {
-    const double se0 = request.sonar->threshold_db;
+    se0 = request.sonar->threshold_db;
     std::vector<double> se1(answers.size(), -INFINITY);
     for (std::size_t k = 0; k < answers.size(); ++k)
       for (double se : answers[k].signal_excess_db) se1[k] = std::max(se1[k], se);
-    const double top = *std::max_element(se1.begin(), se1.end());
+    top = *std::max_element(se1.begin(), se1.end());
     for (std::size_t k = 0; k < answers.size(); ++k)
       if (se1[k] > se0 && top > se0) scale[k] = (se1[k] - se0) / (top - se0);
   }
@@ -72,6 +73,16 @@ DepthForecastResult compute_depth_forecast(std::span<const TransmissionLoss> ins
     std::vector<double> steer = r.objective_filtered, raw = r.objective;
     for (double& v : steer) v *= scale[k];
     for (double& v : raw) v *= scale[k];
+    // With the modem's curve the plan weighs windows by the chance of
+    // decoding: the rescaled steering objective is (SE − SE₀)/(top − SE₀),
+    // linear in the (low-passed) signal excess, so SE and the SNR it is
+    // follow back from it (clipped cells, SE ≤ SE₀, are shadow to the planner).
+    if (f.reception && request.sonar) {
+      std::vector<double> p;
+      for (double v : steer)
+        p.push_back(top > se0 ? reception_probability(*f.reception, se0 + v * (top - se0)) : 0.0);
+      out.field.score.push_back(std::move(p));
+    }
     out.field.time_s.push_back(k * request.horizon_s);
     out.field.steer.push_back(std::move(steer));
     out.field.raw.push_back(std::move(raw));

@@ -19,6 +19,12 @@
 // where the objective is relative to a window's maximum (H_max as the window
 // maximum, or the sonar equation's SE₁), the maximum over the horizon is
 // used, so that "the optimum within the horizon" compares like with like.
+// The score the planner gathers (depth_forecast.h): with the sonar
+// equation and the modem's reception curve (request.forecast's
+// `reception`), the probability of decoding at each cell's low-passed
+// signal excess, read back from the rescaled steering objective, which is
+// linear in it: (SE − SE₀)/(SE_top − SE₀); otherwise none (the planner
+// gathers the steering objective itself).
 // Thread-safe: pure function of its arguments.
 #pragma once
 

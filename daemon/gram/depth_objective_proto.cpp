@@ -61,6 +61,12 @@ DepthObjectiveRequest request_from_proto(const DepthObjectiveQuery& q) {
     f.options.vertical_speed_mps = q.forecast().vertical_speed_mps();
     f.caustic_uncertainty_m = q.forecast().caustic_uncertainty_m();
     if (q.forecast().has_leg_end_range_m()) f.leg_end_range_m = q.forecast().leg_end_range_m();
+    if (q.forecast().has_reception_snr50_db()) {
+      ReceptionCurve curve;
+      curve.snr50_db = q.forecast().reception_snr50_db();
+      if (q.forecast().reception_slope_per_db() != 0) curve.slope_per_db = q.forecast().reception_slope_per_db();
+      f.reception = curve;
+    }
     r.forecast = f;
   }
   if (auto e = validate_depth_objective_request(r)) throw std::invalid_argument(*e);
@@ -100,6 +106,8 @@ DepthObjectiveReply reply_to_proto(const DepthObjectiveResult& result) {
     w->set_vertical_rate_mps(f.decision.vertical_rate_mps);
     w->set_next_depth_m(f.next_depth_m);
     w->set_forecast_horizon_s(f.horizon_used_s);
+    for (double z : f.decision.path_depth_m) w->add_path_depth_m(z);
+    w->set_expected_score(f.decision.expected_score);
     for (std::size_t k = 0; k < f.field.time_s.size(); ++k) {
       DepthForecastColumn* c = w->add_columns();
       c->set_time_s(f.field.time_s[k]);

@@ -444,6 +444,13 @@ TEST_F(GramServiceTest, AcommsctlFeedsTheEnvironmentAndPrintsTheBestDepth) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("# forecast over 600 s (6 windows): "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("; at the next window be at "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("# plan (depth at each window, m; mean score "), std::string::npos) << r.out;
+  // The reception curve needs the sonar equation.
+  r = run(ctl, {"--socket", socket_, "gram", "depth", "--range", "1000", "--speed", "1.5", "--max-depth", "90",
+                "--forecast-horizon", "600", "--reception-snr50", "10"},
+          (dir_ / "ctl7").string());
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.err.find("--reception-snr50 needs the sonar equation"), std::string::npos) << r.err;
   // Without the sonar equation the noise profile has nothing to act on.
   r = run(ctl, {"--socket", socket_, "gram", "depth", "--range", "1000", "--speed", "1.5", "--max-depth", "90",
                 "--noise-decrease", "3"},

@@ -1,8 +1,10 @@
-// The forecast strategy of the depth objective (gram/depth_forecast.h) on
-// constructed fields: a ridge it stays on, a shadow zone it does not cross,
-// the earliest near-best reachable point (least pitch within its column);
-// and the field built from a TL grid (gram/depth_forecast_field.h): the leg's
-// end and the cap on columns.
+// The forecast strategy of the depth objective (gram/depth_forecast.h), a
+// path planner, on constructed fields: a ridge it stays on while it stays
+// the best, a shadow zone it goes round when a lit path exists, a curving
+// band it follows, a band beyond the horizon that still draws it (the
+// terminal value), the limits; and the field built from a TL grid
+// (gram/depth_forecast_field.h): the bias towards depth, the reception
+// score, the leg's end and the cap on columns.
 #include "gram/depth_forecast.h"
 
 #include <gtest/gtest.h>
@@ -40,38 +42,58 @@ double bump(double z, double centre, double height, double width = 60) {
   return height * std::exp(-std::pow((z - centre) / width, 2));
 }
 
-// w = 0.75 m/s: 90 m per 120 s column.
+// w = 0.75 m/s: 90 m per 120 s column; the plan looks past the last
+// column as long as crossing the field's 1000 m takes (the default terminal).
 const ForecastOptions kOptions{};
+
+// Every planned depth is reachable from the previous one.
+void expect_flyable(const ForecastDecision& d, const ForecastOptions& o) {
+  ASSERT_EQ(d.path_depth_m.size(), d.path_time_s.size());
+  for (std::size_t k = 1; k < d.path_depth_m.size(); ++k)
+    EXPECT_LE(std::abs(d.path_depth_m[k] - d.path_depth_m[k - 1]),
+              o.vertical_speed_mps * (d.path_time_s[k] - d.path_time_s[k - 1]) + 1e-9)
+        << k;
+}
 
 TEST(GramDepthForecast, ItStaysOnTheRidgeItIsOnEvenWithABetterPeakOutOfReach) {
   // A ridge at 500 m sinking 40 m a column (within reach), value 0.6; a
-  // peak of 0.9 at 100 m, 400 m away: out of reach in 4 columns (270 m).
-  const ForecastField f = field(4, [](std::size_t k, double z) {
-    return std::max(bump(z, 500 + 40.0 * k, 0.6), bump(z, 100, 0.9));
+  // peak of 0.9 at 100 m, 400 m away, over the first four columns only: it
+  // is gone before the vehicle could get there (4.4 columns at 90 m).
+  const ForecastField f = field(6, [](std::size_t k, double z) {
+    return std::max(bump(z, 500 + 40.0 * k, 0.6), k <= 3 ? bump(z, 100, 0.9) : 0.0);
   });
   const ForecastDecision d = forecast_depth(f, 500, kOptions);
   ASSERT_EQ(d.choice, ForecastChoice::kRidge);
-  ASSERT_EQ(d.ridge_depth_m.size(), 4u);
-  EXPECT_EQ(d.ridge_depth_m[0], 500);
-  EXPECT_EQ(d.target_depth_m, 550);  // the ridge's grid peak at 540 m in column 1
-  EXPECT_EQ(d.ridge_depth_m[3], 600);
-  EXPECT_DOUBLE_EQ(d.target_time_s, 120);
-  EXPECT_NEAR(d.depth_after(500, 60), 525, 1e-9);
-  EXPECT_NEAR(d.depth_after(500, 360), 600, 1e-9);
-  // Over 11 columns the same ridge is followed to 900 m while nothing
-  // better is in reach, but the 0.9 peak comes in reach by column 5: a ridge
-  // that is no longer high is left for it.
+  ASSERT_EQ(d.path_depth_m.size(), 6u);
+  EXPECT_EQ(d.path_depth_m[0], 500);
+  // On the ridge at every column's time (the end of one window, the start
+  // of the next: between the ridge's depths in the two, give or take the
+  // field's 50 m spacing).
+  for (std::size_t k = 1; k < 6; ++k) {
+    EXPECT_GE(d.path_depth_m[k], 500 + 40.0 * (k - 1) - 25) << k;
+    EXPECT_LE(d.path_depth_m[k], 500 + 40.0 * k + 25) << k;
+  }
+  expect_flyable(d, kOptions);
+  EXPECT_DOUBLE_EQ(d.path_time_s[1], 120);
+  EXPECT_NEAR(d.depth_after(500, 60), 0.5 * (500 + d.path_depth_m[1]), 1e-9);
+  EXPECT_NEAR(d.depth_after(500, 360), d.path_depth_m[3], 1e-9);
+  EXPECT_NEAR(d.depth_after(500, 1e6), d.path_depth_m[5], 1e-9);
+  // When the 0.9 peak lasts (every column, and so past the horizon) it
+  // pays for the 4.4 columns of transit many times over: a ridge that is
+  // no longer the best is left for it.
   const ForecastField g = field(11, [](std::size_t k, double z) {
     return std::max(bump(z, 500 + 40.0 * k, 0.6), bump(z, 100, 0.9));
   });
   const ForecastDecision e = forecast_depth(g, 500, kOptions);
   EXPECT_EQ(e.choice, ForecastChoice::kOptimum);
-  EXPECT_EQ(e.target_depth_m, 100);
+  EXPECT_NEAR(e.target_depth_m, 100, 1e-9);
+  EXPECT_LT(e.depth_after(500, 120), 500);  // it leaves now, upward
+  // The same ridge alone is followed to the horizon.
   const ForecastField alone = field(11, [](std::size_t k, double z) { return bump(z, 500 + 40.0 * k, 0.6); });
   const ForecastDecision a = forecast_depth(alone, 500, kOptions);
   ASSERT_EQ(a.choice, ForecastChoice::kRidge);
-  EXPECT_EQ(a.ridge_depth_m[10], 900);
-  EXPECT_NEAR(a.depth_after(500, 1200), 900, 1e-9);
+  EXPECT_NEAR(a.path_depth_m[10], 900, 25);
+  EXPECT_NEAR(a.depth_after(500, 1200), a.path_depth_m[10], 1e-9);
 }
 
 TEST(GramDepthForecast, ARidgeThatEndsWithinTheHorizonIsLeftForTheReachableOptimum) {
@@ -81,32 +103,42 @@ TEST(GramDepthForecast, ARidgeThatEndsWithinTheHorizonIsLeftForTheReachableOptim
   });
   const ForecastDecision d = forecast_depth(f, 500, kOptions);
   EXPECT_EQ(d.choice, ForecastChoice::kOptimum);
-  EXPECT_EQ(d.target_depth_m, 100);
+  EXPECT_NEAR(d.target_depth_m, 100, 1e-9);
   EXPECT_NEAR(d.target_objective, 0.9, 1e-12);
-  // 400 m away: the earliest column that reaches it (90 m a column: the
-  // fifth, 600 s), not the horizon's end at the least pitch.
+  // 400 m away at 90 m a column: the earliest it can be there is the
+  // fifth column (600 s); the plan goes at once, as fast as it may.
   EXPECT_DOUBLE_EQ(d.target_time_s, 600);
   EXPECT_NEAR(d.vertical_rate_mps, 400.0 / 600, 1e-12);
+  EXPECT_NEAR(d.depth_after(500, 120), 410, 1e-9);
+  expect_flyable(d, kOptions);
 }
 
-TEST(GramDepthForecast, AVehicleOffTheRidgeIsNotOnIt) {
+TEST(GramDepthForecast, AVehicleOffTheRidgeIsNotOnItAndHeadsForIt) {
   // 150 m above the ridge's peak its own objective is far below the peak's.
   const ForecastField f = field(11, [](std::size_t k, double z) { return bump(z, 500 + 40.0 * k, 0.6) + 0.01; });
   const ForecastDecision d = forecast_depth(f, 350, kOptions);
   EXPECT_EQ(d.choice, ForecastChoice::kOptimum);
+  EXPECT_NEAR(d.depth_after(350, 120), 440, 1e-9);  // down at full speed
+  EXPECT_NEAR(d.path_depth_m[10], 900, 25);         // then along the ridge
 }
 
-TEST(GramDepthForecast, ItDoesNotCrossAShadowZoneToABetterOptimum) {
-  // Lit everywhere but a shadow zone from 150 to 250 m (raw objective 0):
-  // the best (0.9 at 100 m) lies beyond it; 0.6 at 600 m does not.
-  auto steer = [](std::size_t, double z) { return std::max({bump(z, 100, 0.9), bump(z, 600, 0.6), 0.05}); };
-  auto raw = [&](std::size_t k, double z) { return z >= 150 && z <= 250 ? 0.0 : steer(k, z); };
-  const ForecastDecision d = forecast_depth(field(11, steer, raw), 300, kOptions);
+TEST(GramDepthForecast, ItTakesALitPathRatherThanCrossAShadowZone) {
+  // Lit (0.7) everywhere but a better layer (0.9 at 100 m) and, for the
+  // first four columns, a shadow zone from 150 to 400 m (raw objective 0)
+  // between the vehicle (450 m) and the layer. Straight up crosses it;
+  // waiting below it until it clears, then rising, is lit all the way.
+  auto steer = [](std::size_t, double z) { return std::max(bump(z, 100, 0.9), 0.7); };
+  auto shadowed = [](std::size_t k, double z) { return k <= 3 && z >= 150 && z <= 400; };
+  auto raw = [&](std::size_t k, double z) { return shadowed(k, z) ? 0.0 : steer(k, z); };
+  const ForecastDecision d = forecast_depth(field(11, steer, raw), 450, kOptions);
   EXPECT_EQ(d.choice, ForecastChoice::kOptimum);
-  EXPECT_EQ(d.target_depth_m, 600);
-  // Without the shadow zone it goes for the better one.
-  const ForecastDecision open = forecast_depth(field(11, steer), 300, kOptions);
-  EXPECT_EQ(open.target_depth_m, 100);
+  for (std::size_t k = 0; k < d.path_depth_m.size(); ++k) EXPECT_FALSE(shadowed(k, d.path_depth_m[k])) << k;
+  EXPECT_NEAR(d.target_depth_m, 100, 1e-9);  // it still gets to the layer
+  expect_flyable(d, kOptions);
+  // Without the shadow zone it rises at once (in the shadow it stayed below 400 m).
+  const ForecastDecision open = forecast_depth(field(11, steer), 450, kOptions);
+  EXPECT_LE(open.depth_after(450, 120), 380);  // 360 at full speed; any path there by 480 s ties
+  EXPECT_NEAR(open.target_depth_m, 100, 1e-9);
 }
 
 TEST(GramDepthForecast, AVehicleStartingInAShadowMayLeaveIt) {
@@ -114,59 +146,69 @@ TEST(GramDepthForecast, AVehicleStartingInAShadowMayLeaveIt) {
   auto steer = [](std::size_t, double z) { return z < 200 ? 0.0 : bump(z, 400, 0.8) + 0.1; };
   const ForecastDecision d = forecast_depth(field(11, steer), 20, kOptions);
   EXPECT_EQ(d.choice, ForecastChoice::kOptimum);
-  EXPECT_EQ(d.target_depth_m, 400);
+  EXPECT_NEAR(d.target_depth_m, 400, 10);
+  EXPECT_NEAR(d.depth_after(20, 120), 110, 1e-9);
 }
 
-TEST(GramDepthForecast, TheOptimumItCanReachWins) {
-  // 1.0 at 900 m is 800 m away: unreachable in 10 columns (900 m at most
-  // by the last, but it is only there in column 2). 0.7 at 250 m is.
-  const ForecastField f = field(11, [](std::size_t k, double z) {
-    return std::max(k == 2 ? bump(z, 900, 1.0) : 0.0, bump(z, 250, 0.7)) + 0.01;
-  });
+TEST(GramDepthForecast, ItFollowsACurvingBandWhereAStraightLineCutsAcrossIt) {
+  // A narrow band (30 m) that sinks 80 m a column for five columns and then
+  // rises as fast: the best points within the horizon are on it at both
+  // ends, and the straight line between them runs through nothing. The
+  // plan keeps to the band: at each column's time (the end of one window
+  // and the start of the next) between the band's depths in the two.
+  auto centre = [](std::size_t k) { return k <= 5 ? 300 + 80.0 * k : 700 - 80.0 * (k - 5.0); };
+  const ForecastField f = field(11, [&](std::size_t k, double z) { return bump(z, centre(k), 0.8, 30) + 0.01; });
+  const ForecastDecision d = forecast_depth(f, 300, kOptions);
+  for (std::size_t k = 1; k < 11; ++k) {
+    EXPECT_GE(d.path_depth_m[k], std::min(centre(k - 1), centre(k)) - 25) << k;
+    EXPECT_LE(d.path_depth_m[k], std::max(centre(k - 1), centre(k)) + 25) << k;
+  }
+  expect_flyable(d, kOptions);
+}
+
+TEST(GramDepthForecast, ABandOutOfReachWithinTheHorizonStillDrawsItThroughTheTerminalValue) {
+  // Nothing within reach of 100 m over 6 columns (450 m); a band at 900 m
+  // (800 m away) from the horizon on: with the terminal value the plan
+  // starts down now; without it (terminal_s 0) it holds.
+  const ForecastField f = field(6, [](std::size_t, double z) { return z >= 850 ? 0.6 : 0.0; });
   const ForecastDecision d = forecast_depth(f, 100, kOptions);
   EXPECT_EQ(d.choice, ForecastChoice::kOptimum);
-  EXPECT_EQ(d.target_depth_m, 250);
-  // With a vertical speed that reaches it in 240 s it goes for 900 m.
-  ForecastOptions fast = kOptions;
-  fast.vertical_speed_mps = 4;
-  const ForecastDecision f4 = forecast_depth(f, 100, fast);
-  EXPECT_EQ(f4.target_depth_m, 900);
-  EXPECT_DOUBLE_EQ(f4.target_time_s, 240);
+  EXPECT_NEAR(d.depth_after(100, 120), 190, 1e-9);
+  ForecastOptions myopic = kOptions;
+  myopic.terminal_s = 0;
+  const ForecastDecision m = forecast_depth(f, 100, myopic);
+  EXPECT_EQ(m.choice, ForecastChoice::kHold);
+  EXPECT_EQ(m.depth_after(100, 120), 100);
 }
 
-TEST(GramDepthForecast, OfNearBestPointsTheEarliestNotTheLatest) {
-  // 0.8 at 300 m in column 3 and 0.82 at 700 m in column 10; from 500 m the
-  // second needs 200 m in 1200 s (the least pitch), the first 200 m in 360 s.
-  // Both are within 10% of the best: the earliest is the target.
-  const ForecastField f = field(11, [](std::size_t k, double z) {
-    return (k == 3 ? bump(z, 300, 0.8) : 0.0) + (k == 10 ? bump(z, 700, 0.82) : 0.0) + 0.02;
-  });
-  const ForecastDecision d = forecast_depth(f, 500, kOptions);
-  EXPECT_EQ(d.target_depth_m, 300);
-  EXPECT_DOUBLE_EQ(d.target_time_s, 360);
-  EXPECT_NEAR(d.depth_after(500, 180), 400, 1e-9);  // half way on the straight path
-  // With the strict optimum (tolerance 0) the better, later one.
-  ForecastOptions strict = kOptions;
-  strict.optimum_tolerance = 0;
-  const ForecastDecision s = forecast_depth(f, 500, strict);
-  EXPECT_EQ(s.target_depth_m, 700);
-  EXPECT_DOUBLE_EQ(s.target_time_s, 1200);
-  // The tolerance is relative: 0.7 is not within 10% of 0.82.
-  const ForecastField g = field(11, [](std::size_t k, double z) {
-    return (k == 3 ? bump(z, 300, 0.7) : 0.0) + (k == 10 ? bump(z, 700, 0.82) : 0.0) + 0.02;
-  });
-  EXPECT_EQ(forecast_depth(g, 500, kOptions).target_depth_m, 700);
+TEST(GramDepthForecast, AVerySlowVehicleStaysWithinTheWorkBound) {
+  // 1 mm/s: a 1000 m field would be 10^6 plan depths at the reach's step
+  // and the default terminal 10^6 s; bounded (4000 depths, 480 columns
+  // past the horizon), it cannot move on the plan's grid and holds.
+  ForecastOptions slow = kOptions;
+  slow.vertical_speed_mps = 0.001;
+  const ForecastDecision d = forecast_depth(field(11, [](std::size_t, double z) { return bump(z, 900, 0.9) + 0.1; }), 500, slow);
+  expect_flyable(d, slow);
+  EXPECT_EQ(d.depth_after(500, 120), 500);
 }
 
-TEST(GramDepthForecast, InTheEarliestColumnTheLeastPitch) {
-  // Two equal peaks in column 4 only, at 250 m and 800 m: from 450 m the
-  // nearer (200 m against 350 m) is the target.
-  const ForecastField f = field(11, [](std::size_t k, double z) {
-    return (k == 4 ? std::max(bump(z, 250, 0.9), bump(z, 800, 0.9)) : 0.0) + 0.02;
-  });
+TEST(GramDepthForecast, OnAFlatFieldItHoldsItsDepth) {
+  // Ties go to the smallest move.
+  const ForecastDecision d = forecast_depth(field(11, [](std::size_t, double) { return 0.5; }), 330, kOptions);
+  for (double z : d.path_depth_m) EXPECT_EQ(z, 330);
+  EXPECT_NEAR(d.expected_score, 0.5, 1e-12);
+}
+
+TEST(GramDepthForecast, TheScoreNotTheSteeringObjectiveIsWhatThePlanGathers) {
+  // The steering objective prefers 200 m, the score (a reception
+  // probability) 700 m: the plan follows the score.
+  ForecastField f = field(11, [](std::size_t, double z) { return std::max(bump(z, 200, 0.9), bump(z, 700, 0.5)); });
+  f.score = f.steer;
+  for (auto& column : f.score)
+    for (std::size_t j = 0; j < column.size(); ++j) column[j] = bump(f.depth_m[j], 700, 0.95) + 0.01;
   const ForecastDecision d = forecast_depth(f, 450, kOptions);
-  EXPECT_EQ(d.target_depth_m, 250);
-  EXPECT_DOUBLE_EQ(d.target_time_s, 480);
+  EXPECT_GT(d.depth_after(450, 120), 450);
+  EXPECT_NEAR(d.target_depth_m, 700, 1e-9);
 }
 
 TEST(GramDepthForecast, ForbiddenDepthsAreNeitherTargetsNorPassages) {
@@ -175,8 +217,15 @@ TEST(GramDepthForecast, ForbiddenDepthsAreNeitherTargetsNorPassages) {
   for (auto& column : f.allowed)
     for (std::size_t j = 0; j < column.size(); ++j) column[j] = f.depth_m[j] <= 600;
   const ForecastDecision d = forecast_depth(f, 350, kOptions);
-  EXPECT_LE(d.target_depth_m, 600);
-  EXPECT_EQ(d.target_depth_m, 400);
+  for (double z : d.path_depth_m) EXPECT_LE(z, 600);
+  EXPECT_NEAR(d.target_depth_m, 400, 1e-9);
+  // Nor passages: a forbidden band (600-700 m) between the vehicle and a
+  // better layer below it keeps the plan above it.
+  ForecastField g = field(11, [](std::size_t, double z) { return std::max(bump(z, 900, 1.0), 0.2); });
+  for (auto& column : g.allowed)
+    for (std::size_t j = 0; j < column.size(); ++j) column[j] = g.depth_m[j] < 600 || g.depth_m[j] > 700;
+  const ForecastDecision e = forecast_depth(g, 500, kOptions);
+  for (double z : e.path_depth_m) EXPECT_LT(z, 600);
 }
 
 TEST(GramDepthForecast, NothingAheadReceivesItHolds) {
@@ -192,6 +241,13 @@ TEST(GramDepthForecast, BadFieldsAndOptionsAreRefusedByName) {
   ForecastOptions o = kOptions;
   o.vertical_speed_mps = 0;
   EXPECT_THROW(forecast_depth(f, 10, o), std::invalid_argument);
+  o = kOptions;
+  o.terminal_s = -1;
+  EXPECT_EQ(*validate_forecast_options(o), "terminal_s must be in [0, 86400] s");
+  ForecastField scored = f;
+  scored.score = scored.steer;
+  scored.score[1].pop_back();
+  EXPECT_EQ(*validate_forecast_field(scored), "forecast column 1 does not have one value per depth");
   f.time_s[1] = 0;
   try {
     forecast_depth(f, 10, kOptions);
@@ -247,7 +303,6 @@ TEST(GramDepthForecastField, ColumnsAreTheWindowsAheadAndTheVehicleHeadsForTheLa
   q.forecast = DepthForecastRequest{};
   q.forecast->forecast_horizon_s = 1200;
   q.forecast->current_depth_m = 50;
-  q.forecast->options.optimum_tolerance = 0;  // the strict optimum (the layer's values differ by less than 0.02)
   const DepthObjectiveResult r = compute_depth_objective(tl, env, q);
   EXPECT_FALSE(r.best.any_signal);  // the next window (1000-1180 m) is all shadow
   ASSERT_TRUE(r.forecast);
@@ -265,6 +320,12 @@ TEST(GramDepthForecastField, ColumnsAreTheWindowsAheadAndTheVehicleHeadsForTheLa
   EXPECT_GT(f.decision.target_depth_m, 300);
   EXPECT_LE(std::abs(f.decision.target_depth_m - 50), 0.75 * f.decision.target_time_s);
   EXPECT_NEAR(f.next_depth_m, f.decision.depth_after(50, 120), 1e-9);
+  // Without the bias (no low-pass at all) the plan's best point is higher.
+  DepthObjectiveRequest unbiased = q;
+  unbiased.forecast->caustic_uncertainty_m = 0;
+  const DepthObjectiveResult u = compute_depth_objective(tl, env, unbiased);
+  EXPECT_LT(u.forecast->decision.target_depth_m, f.decision.target_depth_m);
+  EXPECT_LE(u.forecast->decision.target_depth_m, 325);
 
   // Past the grid's last range the forecast stops.
   q.range_m = 5500;
@@ -285,6 +346,60 @@ TEST(GramDepthForecastField, ColumnsAreTheWindowsAheadAndTheVehicleHeadsForTheLa
   q.range_m = 1800;
   q.forecast->leg_end_range_m = 1500;
   EXPECT_EQ(compute_depth_objective(tl, env, q).forecast->field.time_s.size(), 2u);  // 1800, 1620; 1440 is past
+}
+
+TEST(GramDepthForecastField, WithTheModemsCurveTheScoreIsTheChanceOfDecodingInEachWindow) {
+  // The layer's loss grows 1 dB per 200 m of range, so each window has its
+  // own best signal excess; the score must be the reception probability of
+  // each window's own signal excess (no low-pass), whatever the rescaling
+  // of the steering objective across the columns.
+  Environment env;
+  for (auto [z, c] : {std::pair{0.0, 1500.0}, {500.0, 1500.0}}) {
+    auto* p = env.add_sound_speed();
+    p->set_depth_m(z);
+    p->set_speed_mps(c);
+  }
+  TransmissionLoss grid = layered_from_2km();
+  for (std::size_t j = 0; j < grid.depth_m.size(); ++j)
+    for (std::size_t i = 0; i < grid.range_m.size(); ++i) {
+      double& v = grid.tl_db[j * grid.range_m.size() + i];
+      if (std::isfinite(v)) v += (grid.range_m[i] - 2000) / 200 + std::abs(grid.depth_m[j] - 300) / 10;
+    }
+  const std::vector<TransmissionLoss> tl{grid};
+  DepthObjectiveRequest q;
+  q.range_m = 2000;
+  q.speed_mps = 1.5;
+  q.horizon_s = 120;
+  q.limits = {5, 480, 10};
+  SonarOptions sonar;
+  sonar.source_level_db = 190;
+  sonar.noise_level_db = 105;
+  q.sonar = sonar;
+  q.forecast = DepthForecastRequest{};
+  q.forecast->forecast_horizon_s = 1200;
+  q.forecast->current_depth_m = 300;
+  q.forecast->caustic_uncertainty_m = 0;
+  q.forecast->reception = ReceptionCurve{10, 0.5};
+  const DepthObjectiveResult r = compute_depth_objective(tl, env, q);
+  const ForecastField& f = r.forecast->field;
+  ASSERT_EQ(f.score.size(), f.time_s.size());
+  std::size_t lit = 0;
+  for (std::size_t k = 0; k < f.time_s.size(); ++k) {
+    DepthObjectiveRequest column = q;
+    column.forecast.reset();
+    column.range_m = 2000 + 1.5 * f.time_s[k];
+    const DepthObjectiveResult one = compute_depth_objective(tl, env, column);
+    for (std::size_t j = 0; j < f.depth_m.size(); ++j) {
+      if (!(f.raw[k][j] > 0)) continue;  // shadow: the planner scores it 0
+      ++lit;
+      EXPECT_NEAR(f.score[k][j], reception_probability(*q.forecast->reception, one.signal_excess_db[j]), 1e-9)
+          << k << " " << j;
+    }
+  }
+  EXPECT_GT(lit, 20u);
+  // Without the curve there is no score: the plan gathers the objective.
+  q.forecast->reception.reset();
+  EXPECT_TRUE(compute_depth_objective(tl, env, q).forecast->field.score.empty());
 }
 
 }  // namespace

@@ -128,6 +128,16 @@ TEST(GramDepthObjectiveProto, AForecastQueryCarriesItsFieldsAndAnUnsetVerticalSp
   EXPECT_FALSE(r.forecast->leg_end_range_m);
   q.mutable_forecast()->set_leg_end_range_m(60000);
   EXPECT_EQ(request_from_proto(q).forecast->leg_end_range_m, 60000);
+  EXPECT_FALSE(request_from_proto(q).forecast->reception);
+  q.mutable_forecast()->set_reception_snr50_db(12);  // the slope left 0: 1/dB
+  ASSERT_TRUE(request_from_proto(q).forecast->reception);
+  EXPECT_EQ(request_from_proto(q).forecast->reception->snr50_db, 12);
+  EXPECT_EQ(request_from_proto(q).forecast->reception->slope_per_db, 1);
+  q.mutable_forecast()->set_reception_slope_per_db(0.5);
+  EXPECT_EQ(request_from_proto(q).forecast->reception->slope_per_db, 0.5);
+  q.mutable_forecast()->set_reception_slope_per_db(-1);
+  EXPECT_NE(error_of(q).find("reception_slope_per_db"), std::string::npos);
+  q.mutable_forecast()->clear_reception_snr50_db();
   q.mutable_forecast()->set_forecast_horizon_s(121 * 120);  // more columns than a query may ask
   EXPECT_NE(error_of(q).find("must be at most 120 times horizon_s"), std::string::npos);
   q.mutable_forecast()->set_forecast_horizon_s(60);  // shorter than one window
@@ -153,6 +163,9 @@ TEST(GramDepthObjectiveProto, TheReplyCarriesTheForecast) {
   f.decision.target_time_s = 120;
   f.decision.target_objective = 0.5;
   f.decision.vertical_rate_mps = 10.0 / 120;
+  f.decision.path_time_s = {0, 120};
+  f.decision.path_depth_m = {10, 20};
+  f.decision.expected_score = 0.4;
   f.next_depth_m = 20;
   r.forecast = f;
   const DepthObjectiveReply a = reply_to_proto(r);
@@ -163,6 +176,9 @@ TEST(GramDepthObjectiveProto, TheReplyCarriesTheForecast) {
   ASSERT_EQ(a.forecast().columns_size(), 2);
   EXPECT_EQ(a.forecast().columns(1).window_begin_m(), 2180);
   EXPECT_EQ(a.forecast().columns(1).objective(1), 0.5);
+  ASSERT_EQ(a.forecast().path_depth_m_size(), 2);
+  EXPECT_EQ(a.forecast().path_depth_m(1), 20);
+  EXPECT_EQ(a.forecast().expected_score(), 0.4);
 }
 
 }  // namespace
