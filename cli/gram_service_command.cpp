@@ -68,10 +68,15 @@ void print_objective(const v1::DepthObjectiveResponse& response) {
               r.any_signal() ? "" : " — no allowed depth is predicted to receive");
   if (r.has_forecast()) {
     const auto& f = r.forecast();
-    std::printf("# forecast over %.0f s (%d windows): %s, target %.2f m in %.0f s (objective %.4f, %.3f m/s); "
-                "at the next window be at %.2f m\n",
+    // The plan's first window: its rate (the target is on a path, not at
+    // the end of a straight one).
+    const double first_rate = f.path_depth_m_size() > 1 && f.columns_size() > 1 && f.columns(1).time_s() > 0
+                                  ? std::abs(f.path_depth_m(1) - f.path_depth_m(0)) / f.columns(1).time_s()
+                                  : 0;
+    std::printf("# forecast over %.0f s (%d windows): %s, the plan's best point %.2f m in %.0f s (score %.4f); "
+                "first window at %.3f m/s; at the next window be at %.2f m\n",
                 f.forecast_horizon_s(), f.columns_size(), f.choice().c_str(), f.target_depth_m(), f.target_time_s(),
-                f.target_objective(), f.vertical_rate_mps(), f.next_depth_m());
+                f.target_objective(), first_rate, f.next_depth_m());
     std::printf("# plan (depth at each window, m; mean score %.4f):", f.expected_score());
     for (int k = 0; k < f.path_depth_m_size(); ++k) std::printf("%s %.1f", k ? "," : "", f.path_depth_m(k));
     std::printf("\n");
@@ -194,6 +199,20 @@ void run_env_update(const EnvOptions& o, const GlobalOptions& global) {
     std::printf("  t=%.0f s: %d points from %u samples\n", i.time_s(), i.sound_speed_size(), i.samples());
 }
 
+// A number that is finite: the options left unset are NaN, so "nan" given
+// would read as not given.
+const CLI::Validator finite_number(
+    [](std::string& text) -> std::string {
+      try {
+        std::size_t used = 0;
+        const double v = std::stod(text, &used);
+        if (used == text.size() && std::isfinite(v)) return "";
+      } catch (const std::exception&) {
+      }
+      return "must be a finite number, not " + text;
+    },
+    "FINITE");
+
 }  // namespace
 
 void add_gram_service_commands(CLI::App& gram, const GlobalOptions& options) {
@@ -216,21 +235,23 @@ void add_gram_service_commands(CLI::App& gram, const GlobalOptions& options) {
   depth->add_option("--lowpass", d.lowpass_per_m, "Low-pass cutoff over depth (1/m; 0.02 = the thesis's 1/50 m; 0: none)")
       ->capture_default_str();
   depth->add_flag("--zero-phase", d.zero_phase, "Forward-backward low-pass (no lag)");
-  depth->add_option("--source-level", d.source_level_db, "Sonar equation: SL (dB re 1 uPa at 1 m)");
-  depth->add_option("--noise-level", d.noise_level_db, "Sonar equation: NL in the band (dB re 1 uPa)");
+  depth->add_option("--source-level", d.source_level_db, "Sonar equation: SL (dB re 1 uPa at 1 m)")->check(finite_number);
+  depth->add_option("--noise-level", d.noise_level_db, "Sonar equation: NL in the band (dB re 1 uPa)")->check(finite_number);
   depth->add_option("--array-gain", d.array_gain_db, "Sonar equation: AG (dB)")->capture_default_str();
   depth->add_option("--threshold", d.threshold_db, "Sonar equation: SE threshold (dB)")->capture_default_str();
-  depth->add_option("--source-depth", d.source_depth_m, "Override the other node's depth (m)");
+  depth->add_option("--source-depth", d.source_depth_m, "Override the other node's depth (m)")->check(finite_number);
   depth->add_option("--consumer", d.consumer, "Consumer key: a newer request of the same key supersedes a waiting one")
       ->capture_default_str();
   depth->add_option("--deadline", d.deadline_s, "Seconds the model may take")->capture_default_str();
   depth->add_option("--png", d.png, "Also plot the objective against depth to this PNG")->type_name("FILE");
   depth->add_option("--noise-decrease", d.noise_decrease_db_per_km,
                     "Sonar equation, deep water: NL falls by this many dB/km below the profile's critical depth "
-                    "(spec 6.6 after Schneider 2013 4.4; 3 is typical)");
+                    "(spec 6.6 after Schneider 2013 4.4; 3 is typical)")
+      ->check(finite_number);
   depth->add_option("--forecast-horizon", d.forecast_horizon_s,
                     "Also run the forecast strategy (deep water): plan over this many seconds ahead, one window "
-                    "every --horizon");
+                    "every --horizon")
+      ->check(finite_number);
   depth->add_option("--current-depth", d.current_depth_m, "Forecast: the vehicle's depth now (m)")->capture_default_str();
   depth->add_option("--vertical-speed", d.vertical_speed_mps, "Forecast: the vehicle's most vertical speed (m/s)")
       ->capture_default_str();
@@ -239,10 +260,12 @@ void add_gram_service_commands(CLI::App& gram, const GlobalOptions& options) {
                     "surface with cutoff 1/this (0: --lowpass)")
       ->capture_default_str();
   depth->add_option("--leg-end", d.leg_end_m,
-                    "Forecast: the range (m) where the vehicle's leg ends (a turn): no window past it is forecast");
+                    "Forecast: the range (m) where the vehicle's leg ends (a turn): no window past it is forecast")
+      ->check(finite_number);
   depth->add_option("--reception-snr50", d.reception_snr50_db,
                     "Forecast with the sonar equation: the modem's SNR (dB) at which half the packets decode; the "
-                    "plan then maximises the packets expected (default: the objective)");
+                    "plan then maximises the packets expected (default: the objective)")
+      ->check(finite_number);
   depth->add_option("--reception-slope", d.reception_slope_per_db,
                     "Forecast: the reception curve's logistic slope (1/dB; 0: 1)")
       ->capture_default_str();

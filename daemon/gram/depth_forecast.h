@@ -36,7 +36,16 @@
 //     loses the windows it spends there and a lit path to the same good
 //     depths wins: the thesis's "without crossing a shadow zone" as a
 //     consequence, not a rule; and a ridge the vehicle is on that stays
-//     high is kept because no path receives more by leaving it;
+//     high is kept because no path receives more by leaving it. A depth is
+//     allowed only within the allowed interval: on a field depth, its
+//     flag; between two field depths, both must be allowed (the limits may
+//     lie anywhere between them; nearer the limit is refused, not risked);
+//   - a vehicle outside the allowed depths (the bottom shoals under it, or
+//     it reports a depth past a limit), further than a window's reach,
+//     heads back: a forbidden depth may be on a path only as a step that
+//     brings it nearer the allowed ones, scoring −1 (below any allowed
+//     depth, so the way back is the quickest); without this every path
+//     would be forbidden and it would hold where it must not be;
 //   - the horizon's end is not the end of the run: beyond the last column
 //     its field is assumed to last `terminal_s` more (a terminal value; by
 //     default the time to cross the field's depths), so that a good band
@@ -48,21 +57,27 @@
 //   - the bias towards depth stays in the field: its steering objective is
 //     low-passed from the surface down (spec §6.4) by the caller
 //     (depth_forecast_field.h), and the score derives from it.
-// The path is planned on a depth grid of its own, from the vehicle's depth
-// in steps that divide w·Δt (≤ 10 m, and no coarser than the field), with
-// the field's values interpolated linearly, so the plan's next depth is
-// exactly reachable. Ties go to the smallest move. The work is bounded
-// whatever the request: at most 4000 plan depths (a vehicle slower than
-// a 4000th of the field's depths per column plans as if it could not
-// move), 16 plan steps per reach, and 480 columns past the horizon.
+// The path is planned on a depth grid of its own over the field's depths
+// only, from the vehicle's depth (or the field's nearest end when it is
+// outside them: the model says nothing there) in steps that divide w·Δt
+// (≤ 10 m, and no coarser than the field), with the field's values
+// interpolated linearly, so the plan's next depth is exactly reachable.
+// Ties go to the smallest move. The work is bounded whatever the request
+// (any reported depth, any field, w ≤ 10 m/s; counts clamped as doubles
+// before any integer cast): at most 4001 plan depths (a vehicle slower
+// than a 4000th of the field's depths per column plans as if it could not
+// move), 16 plan steps per reach, 127 per column, and 480 columns past
+// the horizon.
 // The choice reported: "ridge" when the vehicle is on a local maximum of
 // the score and the whole plan stays on one (within ridge_tolerance of the
 // best within a field spacing), "optimum" when the plan leaves for better
 // depths (the target: the plan's best point, the earliest), "hold" when
 // nothing ahead is predicted to receive.
-// Invariants: every planned depth is allowed (but the vehicle's own) and
-// reachable from the previous one at the vertical speed; the result
-// depends on nothing but the arguments.
+// Invariants: every planned depth is allowed, but for the way back into
+// the allowed depths (each of its steps nearer them), and reachable from
+// the previous one at the vertical speed (from the vehicle's own depth
+// when it is within the field's); the plan's grid has at most 4001 depths;
+// the result depends on nothing but the arguments.
 // Thread-safe: pure functions.
 #pragma once
 
@@ -89,8 +104,11 @@ struct ForecastField {
 };
 
 struct ForecastOptions {
-  double vertical_speed_mps = 0.75;  // w, > 0
-  double ridge_tolerance = 0.05;     // [0, 1], of the score: what counts as staying on a ridge
+  double vertical_speed_mps = 0.75;  // w, in (0, 10] m/s
+  // [0, 1], of the score: within it of the best nearby counts as on a
+  // ridge. It only picks the label reported ("ridge" or "optimum"); the
+  // plan is the same either way.
+  double ridge_tolerance = 0.05;
   double shadow_objective = 0.0;     // raw objective at or below: shadow, [0, 1)
   // The terminal value: beyond the last column its field is assumed to
   // hold this many seconds more, in [0, 86400] (0: the plan ends at the
@@ -108,10 +126,11 @@ struct ForecastDecision {
   // depth, time 0.
   double target_depth_m = 0;
   double target_time_s = 0;
-  double target_objective = 0;  // its score
-  double vertical_rate_mps = 0;  // |target − current| / target_time_s
+  double target_objective = 0;  // its score (0 for a depth the limits forbid)
+  double vertical_rate_mps = 0;  // |target − current| / target_time_s (the mean, not the plan's rate)
   // The plan: its depth at each column's time (path_depth_m[0] = the
-  // vehicle's), and its mean score per window over the horizon.
+  // vehicle's), and its mean score per window over the horizon (forbidden
+  // depths on the way back scoring 0).
   std::vector<double> path_time_s;
   std::vector<double> path_depth_m;
   double expected_score = 0;

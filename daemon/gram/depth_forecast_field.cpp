@@ -36,8 +36,8 @@ DepthForecastResult compute_depth_forecast(std::span<const TransmissionLoss> ins
   std::vector<DepthObjectiveResult> answers;
   for (const DepthObjectiveRequest& q : requests) answers.push_back(compute_depth_objective(instances, env, q));
 
-  // One scale for every column, or the optimum "within the horizon" would
-  // compare each window against itself: H_max of eq. 4.3 as the window
+  // One scale for every column, or the planner would weigh each window
+  // against itself: H_max of eq. 4.3 as the window
   // maximum becomes the largest over the horizon (the columns are run again
   // with it fixed); with the sonar equation each column's O_SE is
   // (SE − SE₀)/(SE₁ − SE₀) with its own SE₁, a positive factor away from the

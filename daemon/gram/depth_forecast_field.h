@@ -18,7 +18,8 @@
 // with the bottom under each column's window. The columns share one scale:
 // where the objective is relative to a window's maximum (H_max as the window
 // maximum, or the sonar equation's SE₁), the maximum over the horizon is
-// used, so that "the optimum within the horizon" compares like with like.
+// used, so that the planner weighs the windows on one scale (a window whose
+// best is weak does not score as high as the horizon's best).
 // The score the planner gathers (depth_forecast.h): with the sonar
 // equation and the modem's reception curve (request.forecast's
 // `reception`), the probability of decoding at each cell's low-passed

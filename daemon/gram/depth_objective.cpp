@@ -108,8 +108,13 @@ std::optional<std::string> validate_depth_objective_request(const DepthObjective
     if (auto e = validate_lowpass(*r.lowpass)) return e;
   if (r.sonar)
     if (auto e = validate_sonar(*r.sonar)) return e;
-  if (r.forecast)
+  if (r.forecast) {
     if (auto e = validate_depth_forecast_request(*r.forecast, r.horizon_s)) return e;
+    // The curve reads the SNR from the sonar equation's signal excess:
+    // without it there is no SNR, and the curve would be ignored.
+    if (r.forecast->reception && !r.sonar)
+      return "reception_snr50_db needs the sonar equation (sonar): the reception curve is read at its signal excess";
+  }
   return std::nullopt;
 }
 

@@ -66,6 +66,9 @@ DepthObjectiveRequest request_from_proto(const DepthObjectiveQuery& q) {
       curve.snr50_db = q.forecast().reception_snr50_db();
       if (q.forecast().reception_slope_per_db() != 0) curve.slope_per_db = q.forecast().reception_slope_per_db();
       f.reception = curve;
+    } else if (q.forecast().reception_slope_per_db() != 0) {
+      throw std::invalid_argument(
+          "reception_slope_per_db is set without reception_snr50_db: give the curve's SNR50 too, or neither");
     }
     r.forecast = f;
   }

@@ -444,7 +444,15 @@ TEST_F(GramServiceTest, AcommsctlFeedsTheEnvironmentAndPrintsTheBestDepth) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("# forecast over 600 s (6 windows): "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("; at the next window be at "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("the plan's best point "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("first window at "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("# plan (depth at each window, m; mean score "), std::string::npos) << r.out;
+  // "nan" is not a curve left unset: refused.
+  r = run(ctl, {"--socket", socket_, "gram", "depth", "--range", "1000", "--speed", "1.5", "--max-depth", "90",
+                "--source-level", "185", "--noise-level", "80", "--forecast-horizon", "600", "--reception-snr50", "nan"},
+          (dir_ / "ctl8").string());
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.err.find("must be a finite number, not nan"), std::string::npos) << r.err;
   // The reception curve needs the sonar equation.
   r = run(ctl, {"--socket", socket_, "gram", "depth", "--range", "1000", "--speed", "1.5", "--max-depth", "90",
                 "--forecast-horizon", "600", "--reception-snr50", "10"},

@@ -130,6 +130,12 @@ TEST(GramDepthObjectiveProto, AForecastQueryCarriesItsFieldsAndAnUnsetVerticalSp
   EXPECT_EQ(request_from_proto(q).forecast->leg_end_range_m, 60000);
   EXPECT_FALSE(request_from_proto(q).forecast->reception);
   q.mutable_forecast()->set_reception_snr50_db(12);  // the slope left 0: 1/dB
+  // The curve is read at the sonar equation's signal excess: without it
+  // the curve would be silently ignored, so it is refused.
+  EXPECT_EQ(error_of(q),
+            "reception_snr50_db needs the sonar equation (sonar): the reception curve is read at its signal excess");
+  q.mutable_sonar()->set_source_level_db(185);
+  q.mutable_sonar()->set_noise_level_db(80);
   ASSERT_TRUE(request_from_proto(q).forecast->reception);
   EXPECT_EQ(request_from_proto(q).forecast->reception->snr50_db, 12);
   EXPECT_EQ(request_from_proto(q).forecast->reception->slope_per_db, 1);
@@ -138,6 +144,14 @@ TEST(GramDepthObjectiveProto, AForecastQueryCarriesItsFieldsAndAnUnsetVerticalSp
   q.mutable_forecast()->set_reception_slope_per_db(-1);
   EXPECT_NE(error_of(q).find("reception_slope_per_db"), std::string::npos);
   q.mutable_forecast()->clear_reception_snr50_db();
+  // A slope without the curve's SNR50 would be neither applied nor checked.
+  EXPECT_EQ(error_of(q),
+            "reception_slope_per_db is set without reception_snr50_db: give the curve's SNR50 too, or neither");
+  q.mutable_forecast()->set_reception_slope_per_db(0.5);
+  EXPECT_EQ(error_of(q),
+            "reception_slope_per_db is set without reception_snr50_db: give the curve's SNR50 too, or neither");
+  q.mutable_forecast()->clear_reception_slope_per_db();
+  q.clear_sonar();
   q.mutable_forecast()->set_forecast_horizon_s(121 * 120);  // more columns than a query may ask
   EXPECT_NE(error_of(q).find("must be at most 120 times horizon_s"), std::string::npos);
   q.mutable_forecast()->set_forecast_horizon_s(60);  // shorter than one window
