@@ -32,7 +32,14 @@ void Forwarder::journal_into_custody(queue::JournalMessage record, MessageIdenti
       } else {
         pending_.erase(identity);
       }
+      // Custody that came on a modem-ACK link: its receipt, now.
+      std::optional<std::pair<int, int32_t>> answer;
+      if (auto r = receipt_on_commit_.find(identity); !receipt && r != receipt_on_commit_.end()) {
+        answer = r->second;
+        receipt_on_commit_.erase(r);
+      }
       if (!ok) {
+        if (answer) owe_custody_receipt(answer->first, answer->second, identity, false);
         if (receipt) {
           spdlog::error("route: {} for node {} not stored: not sent", record.type, record.dest);
         } else {
@@ -45,7 +52,9 @@ void Forwarder::journal_into_custody(queue::JournalMessage record, MessageIdenti
       message.record = record;
       message.record.id = id;
       message.encoded = record.payload;
-      if (!queues_.accept_custody(std::move(message)) && taken) taken->store(false);
+      const bool accepted = queues_.accept_custody(std::move(message));
+      if (!accepted && taken) taken->store(false);
+      if (answer) owe_custody_receipt(answer->first, answer->second, identity, accepted);
     });
   });
 }
@@ -123,6 +132,7 @@ std::string Forwarder::on_sent(const queue::Queue& queue, const queue::QueuedMes
   if (!is_custody(queue.type())) {
     awaiting_.sent({message.record.id, queue.type(), message.record.dest, form.next_hop, now});
   }
+  note_wrapped_send(message, form);
   return "to node " + std::to_string(message.record.dest) + " through node " + std::to_string(form.next_hop);
 }
 
@@ -137,6 +147,7 @@ std::string Forwarder::acked_detail(const queue::Queue& queue, const queue::Queu
 
 void Forwarder::expired(const queue::Queue& queue, const queue::QueuedMessage& message, double now) {
   ACOMMS_ASSERT_CORE_THREAD();
+  forget_sent(message.record.id);
   if (!is_custody(queue.type())) return;
   if (std::optional<Envelope> e = held_envelope(message, envelope_id_)) report_expired(*e, now);
 }
