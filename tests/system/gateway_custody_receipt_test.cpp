@@ -6,11 +6,51 @@
 // what it took, so its custody (routing.max_custody) stays full.
 
 #include "gateway_network.h"
+#include "queue/sqlite_journal.h"
+#include "store/group_commit_writer.h"
+#include "store/store.h"
 
 namespace acomms::gateway_test {
 namespace {
 
 using namespace std::chrono_literals;
+
+// The shore's real store (SQLite, migrated, group commits), its appends
+// waited for on the caller's thread: the simulated network runs on one.
+class SqliteStore final : public queue::MessageJournal {
+ public:
+  explicit SqliteStore(const std::filesystem::path& dir) : store_(dir.string()), writer_(store_.db()), inner_(writer_) {}
+  using MessageJournal::append;
+  void append(queue::JournalMessage message, Appended appended) override {
+    int64_t id = 0;
+    std::exception_ptr error;
+    try {
+      id = inner_.append(std::move(message));
+    } catch (...) {
+      error = std::current_exception();
+    }
+    appended(id, error);
+  }
+  void record(const queue::QueueEvent& event) override { inner_.record(event); }
+  std::vector<queue::JournalMessage> load() override { return inner_.load(); }
+  std::vector<queue::QueueEvent> received_since(double since) override { return inner_.received_since(since); }
+  std::vector<queue::QueueEvent> authenticated_since(double since) override {
+    return inner_.authenticated_since(since);
+  }
+  std::vector<queue::RoutedIdentity> routed_since(double now) override { return inner_.routed_since(now); }
+  int64_t last_received_seq() override { return inner_.last_received_seq(); }
+  void when_committed(Committed committed) override {
+    inner_.flush();
+    committed(nullptr);
+  }
+  uint64_t events_not_stored() const override { return inner_.events_not_stored(); }
+  void flush() override { inner_.flush(); }
+
+ private:
+  store::Store store_;
+  store::GroupCommitWriter writer_;
+  queue::SqliteJournal inner_;
+};
 
 // The shore's commands live two hours: long enough for a back-off or two.
 constexpr const char* kLongCommandQueues =
@@ -19,11 +59,12 @@ constexpr const char* kLongCommandQueues =
 
 class CustodyReceipts : public GatewayNetwork {
  protected:
-  void build_shore_modem_acks() {
+  void build_shore_modem_acks() { build_shore_modem_acks(shore_journal_); }
+  void build_shore_modem_acks(queue::MessageJournal& journal) {
     shore_ = std::make_unique<GatewayNode>(
         1, std::vector{status_proto(), command_proto()}, kLongCommandQueues,
         R"(route { dest: 3 next_hop: 2 link: "sat" })",
-        std::vector<LinkSpec>{{"sat", sat_, kSatCycle, 0, /*modem_acks=*/true}}, scheduler_, shore_journal_);
+        std::vector<LinkSpec>{{"sat", sat_, kSatCycle, 0, /*modem_acks=*/true}}, scheduler_, journal);
   }
   void build_buoy_modem_acks(const std::string& routing) {
     buoy_ = std::make_unique<GatewayNode>(
@@ -127,7 +168,8 @@ TEST_F(CustodyReceipts, ALostCustodyReceiptLeadsToAReofferAnsweredTakenWithoutAS
 }
 
 TEST_F(CustodyReceipts, AShoreRestartedWhileAwaitingACustodyReceiptOffersTheMessageAgain) {
-  build_shore_modem_acks();
+  auto store = std::make_unique<SqliteStore>(dir_ / "shore");
+  build_shore_modem_acks(*store);
   build_buoy_modem_acks("");
   build_vehicle();
   shore_->links[0]->modem->drop = [](const v1::ModemTransmission& t) { return t.src() == 2 && carries_bytes(t); };
@@ -139,19 +181,24 @@ TEST_F(CustodyReceipts, AShoreRestartedWhileAwaitingACustodyReceiptOffersTheMess
   ASSERT_EQ(buoy_->custody_held(), 1u);
   ASSERT_EQ(shore_->forwarder->held_for_receipt().size(), 1u);
 
-  // Killed while it waits (nothing flushed, nothing said), and back.
+  // Killed while it waits, its store closed and opened again.
   shore_.reset();
-  build_shore_modem_acks();
-  EXPECT_EQ(shore_commands_queued(), 1u) << "the journal kept it";
+  store.reset();
+  store = std::make_unique<SqliteStore>(dir_ / "shore");
+  build_shore_modem_acks(*store);
+  EXPECT_EQ(shore_commands_queued(), 1u) << "the store kept it";
   shore_->start();
   scheduler_.run_for(120s);  // far less than the receipt wait: offered at once
   EXPECT_EQ(shore_commands_queued(), 0u) << "offered again, and the buoy's receipt ended it";
   EXPECT_EQ(buoy_->forwarder->stats().custody_copies, 1u);
   EXPECT_EQ(buoy_journal_.load().size(), 1u) << "stored once at the buoy";
+  store->flush();
+  EXPECT_TRUE(store->load().empty()) << "the receipt's acked event removed it from the shore's store";
 
   vehicle_->start();
   scheduler_.run_for(900s);
   EXPECT_EQ(vehicle_got(9), 1u);
+  shore_.reset();  // before its store
 }
 
 }  // namespace
