@@ -27,6 +27,7 @@ Forwarder::Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vecto
                      dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock,
                      double custody_ttl_s, PostToCore post)
     : table_(config, links, own_id),
+      codec_(codec),
       own_id_(own_id),
       links_(std::move(links)),
       queues_(queues),
@@ -145,8 +146,15 @@ queue::EnvelopeOutcome Forwarder::deliver_here(const Envelope& e, size_t used, i
   }
   const double forget_after = now + e.ttl_s + kClockSkewS;
   if (starts_envelope(e.payload, envelope_id_)) {
-    // Routing's own payload: a receipt for this node, or nothing valid.
-    std::optional<Receipt> receipt = decode_receipt(e.payload, envelope_id_);
+    // Routing's own payload: a receipt for this node (sealed by its origin
+    // when auth is configured), or nothing valid.
+    const SealCheck seal = check_receipt_seal(e.payload, kReceiptBytes, auth(), e.origin, now, custody_ttl_s_);
+    if (!seal.ok) {
+      refuse_receipt("end-to-end receipt", e.origin, seal.why);
+      return consumed(used);
+    }
+    std::optional<Receipt> receipt;
+    if (seal.used == e.payload.size()) receipt = decode_receipt(e.payload.substr(0, kReceiptBytes), envelope_id_);
     if (!receipt) {
       ++stats_.malformed;
       spdlog::warn("route: envelope {}/{} holds another envelope: dropped", e.origin, e.seq);
@@ -309,7 +317,8 @@ std::string Forwarder::waiting(const queue::Queue& queue, const queue::QueuedMes
 
 // An end-to-end ack or expiry report in custody says so (queue ls).
 std::string Forwarder::receipt_json(const std::string& payload) const {
-  std::optional<Receipt> receipt = decode_receipt(payload, envelope_id_);
+  // Sealed or not (route/receipt_seal.h): its first bytes say which.
+  std::optional<Receipt> receipt = decode_receipt(std::string_view(payload).substr(0, kReceiptBytes), envelope_id_);
   if (!receipt) return "";
   return ",\"receipt\":\"" + std::string(to_string(receipt->kind)) + "\",\"about_seq\":" + std::to_string(receipt->seq);
 }

@@ -56,6 +56,8 @@
 //    neighbour there), an ACK from it, and an envelope's origin through the
 //    node that handed it over (route/route_table.h).
 // An envelope inside an envelope's payload is never acted on.
+// With auth configured, every receipt is sealed and checked (route/
+// receipt_seal.h): a forged one changes nothing.
 
 // Threads: core thread only (queue::Routing's calls), but for the journal's
 // completion of a custody append, which posts to the core (PostToCore).
@@ -79,6 +81,7 @@
 #include "route/end_to_end_ack.h"
 #include "route/envelope.h"
 #include "route/receipt.h"
+#include "route/receipt_seal.h"
 #include "route/route_table.h"
 
 namespace acomms::route {
@@ -104,6 +107,9 @@ struct ForwarderStats {
   uint64_t custody_receipts_received = 0;  // ... heard about a message this node held for one
   uint64_t custody_receipts_ignored = 0;   // ... about nothing this node waits for, or from another node
   uint64_t custody_reoffered = 0;          // messages offered again: refused, or no receipt in time
+  // Receipts (end-to-end or custody) refused: unsealed, forged or stale
+  // while auth is configured (route/receipt_seal.h).
+  uint64_t receipts_refused = 0;
 };
 
 class Forwarder final : public queue::Routing {
@@ -196,9 +202,15 @@ class Forwarder final : public queue::Routing {
   void forget_sent(int64_t message_id);
   bool holds(const MessageIdentity& identity) const;
   const std::string& link_name(int link) const;
+  // The fleet's authenticator, or null: receipts sealed and checked with it
+  // (route/receipt_seal.h).
+  const dccl::MessageAuthenticator* auth() const { return codec_.authenticator(); }
+  // A receipt from `from` refused by its seal: counted and logged.
+  void refuse_receipt(const char* what, int32_t from, const std::string& why);
   std::string receipt_json(const std::string& payload) const;
 
   RouteTable table_;
+  const dccl::Codec& codec_;
   int32_t own_id_;
   std::vector<std::string> links_;
   queue::QueueManager& queues_;

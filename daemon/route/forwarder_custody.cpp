@@ -56,17 +56,20 @@ void Forwarder::owe_custody_receipt(int link, int32_t to, MessageIdentity about,
   owed_.push_back({link, to, about, taken});
 }
 
-std::string Forwarder::owed_on(int link, int32_t dest, size_t room, double /*now*/) {
+std::string Forwarder::owed_on(int link, int32_t dest, size_t room, double now) {
   ACOMMS_ASSERT_CORE_THREAD();
   std::string bytes;
+  const size_t each = sealed_size(kCustodyReceiptBytes, auth());
   for (auto it = owed_.begin(); it != owed_.end();) {
     const bool reaches = dest == queue::kAnyDestination || dest == queue::kBroadcast || dest == it->to;
-    if (it->link != link || !reaches || bytes.size() + kCustodyReceiptBytes > room) {
+    if (it->link != link || !reaches || bytes.size() + each > room) {
       ++it;
       continue;
     }
     const CustodyVerdict verdict = it->taken ? CustodyVerdict::kTaken : CustodyVerdict::kRefused;
-    bytes += encode_custody_receipt({verdict, it->about}, envelope_id_);
+    std::string receipt = encode_custody_receipt({verdict, it->about}, envelope_id_);
+    seal_receipt(receipt, auth(), now);
+    bytes += receipt;
     ++stats_.custody_receipts_sent;
     spdlog::debug("route: custody receipt {} of message {}/{} to node {}", to_string(verdict), it->about.origin,
                   it->about.seq, it->to);
@@ -134,7 +137,13 @@ queue::EnvelopeOutcome Forwarder::on_custody_receipt(std::string_view rest, int3
     spdlog::warn("route: truncated custody receipt from node {}", src);
     return {};
   }
-  auto done = [] { return consumed(kCustodyReceiptBytes); };
+  // Sealed by `src` when auth is configured (route/receipt_seal.h).
+  const SealCheck seal = check_receipt_seal(rest, kCustodyReceiptBytes, auth(), src, now, custody_ttl_s_);
+  auto done = [used = seal.used] { return consumed(used); };
+  if (!seal.ok) {
+    refuse_receipt("custody receipt", src, seal.why);
+    return done();
+  }
   // Which of this node's messages it is about: held since its modem's ACK,
   // or still awaiting that ACK (the receipt overtook it).
   auto about = [&](std::map<int64_t, HeldForReceipt>& notes) {

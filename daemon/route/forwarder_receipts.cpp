@@ -74,6 +74,7 @@ void Forwarder::originate_receipt(int32_t to, Receipt receipt, uint8_t value_ten
   e.ttl_s = ttl_to_seconds(custody_ttl_s_);
   e.value_tenths = value_tenths;  // as urgent as the message it is about
   e.payload = encode_receipt(receipt, envelope_id_);
+  seal_receipt(e.payload, auth(), now);  // as this node, when auth is configured
   queue::JournalMessage record;
   record.type = custody_queue(value_tenths);
   record.payload = encode_envelope(e, envelope_id_);
@@ -84,6 +85,13 @@ void Forwarder::originate_receipt(int32_t to, Receipt receipt, uint8_t value_ten
   ++stats_.receipts_sent;
   spdlog::debug("route: {} receipt of message {}/{} to node {}", to_string(receipt.kind), to, receipt.seq, to);
   journal_into_custody(std::move(record), {}, nullptr);
+}
+
+void Forwarder::refuse_receipt(const char* what, int32_t from, const std::string& why) {
+  ++stats_.receipts_refused;
+  spdlog::warn("route: {} from node {} refused: {} (with auth configured every receipt must be sealed by the node "
+               "that reports)",
+               what, from, why);
 }
 
 void Forwarder::report_expired(const Envelope& e, double now) {
