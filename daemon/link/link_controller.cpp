@@ -234,6 +234,10 @@ void LinkController::on_receive(const v1::ModemTransmission& transmission) {
   ACOMMS_ASSERT_CORE_THREAD();
   mac_.on_receive(transmission);
   ack_conditions_.clear();  // they belong to the transmission they came with
+  // Whether this link's modem ACKs decides custody on both sides of a hop:
+  // an ACK heard here (the sender keeps a routed message for its custody
+  // receipt), DATA heard here (the receiver answers with one).
+  queues_.set_acks_in_hardware(options_.link_index, driver_.acks_in_hardware());
   if (transmission.has_figures()) {
     // Frameless packets (polls, ACKs) are mini-packets, FSK whatever rate
     // field they carry: rate 0's reception curve judges them.
@@ -276,7 +280,6 @@ void LinkController::on_receive(const v1::ModemTransmission& transmission) {
   // transmission's dest: a unicast frame may carry broadcast messages. Each
   // message's event keeps the transmission's figures, for replay.
   const std::string figures = link_figures(transmission).SerializeAsString();
-  queues_.set_acks_in_hardware(options_.link_index, driver_.acks_in_hardware());
   for (const std::string& frame : transmission.frame()) {
     for (queue::ReceivedMessage& message : queues_.receive(frame, transmission.src(), figures, options_.link_index,
                                                                     transmission.dest())) {

@@ -138,7 +138,14 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
     Frame frame;
     frame.frame_id = next_frame_id_++;
     std::vector<Contender> field = contenders(now);
-    while (TypeState* winner = contest(field, now, request.max_frame_bytes - frame.bytes.size(), dest, request)) {
+    // What routing owes on this link (custody receipts, queue/routing.h):
+    // its room is kept before the contest, its bytes go after the messages.
+    std::string owed;
+    if (routing_ != nullptr && n == 0) {
+      owed = routing_->owed_on(request.link, request.dest, request.max_frame_bytes, now);
+    }
+    while (TypeState* winner =
+               contest(field, now, request.max_frame_bytes - owed.size() - frame.bytes.size(), dest, request)) {
       Queue& queue = *winner->queue;
       const QueuedMessage& next = *queue.find(winner_id_);
       const bool wrapped = winner_form_.kind == RoutedForm::Kind::kWrapped;
@@ -164,8 +171,10 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
       }
       queue.mark_sent(next.record.id, awaits_ack ? frame.frame_id : 0, now);  // `next` is gone after this
     }
+    frame.bytes += owed;
     if (frame.bytes.empty()) break;
-    frame.dest = dest;
+    // A frame of owed bytes only is for whoever hears it.
+    frame.dest = dest == kAnyDestination ? kBroadcast : dest;
     frames.push_back(std::move(frame));
   }
   if (piggyback_ != nullptr) add_piggyback(request, dest, now, &frames);
@@ -209,8 +218,14 @@ void QueueManager::on_ack(uint64_t frame_id) {
   }
   double now = clock_.now_seconds();
   std::set<TypeState*> types(it->second.types.begin(), it->second.types.end());
+  const int link = it->second.link;
   for (TypeState* state : types) {
-    for (const QueuedMessage& m : state->queue->take_acked(frame_id)) {
+    // A routed message the link's modem ACKed may stay, held for the next
+    // hop's custody receipt (queue/routing.h): routing ends it later.
+    auto keep = [&](const QueuedMessage& m) {
+      return routing_ != nullptr && routing_->keeps_after_ack(*state->queue, m, link, now);
+    };
+    for (const QueuedMessage& m : state->queue->take_acked(frame_id, keep)) {
       const std::string detail = routing_ != nullptr ? routing_->acked_detail(*state->queue, m) : "";
       emit(*state, now, {.kind = QueueEventKind::kAcked, .message = m.record, .frame_id = frame_id,
                          .detail = detail, .removes_message = true});

@@ -88,13 +88,18 @@ std::vector<QueuedMessage> extract(std::deque<QueuedMessage>& messages, Pred pre
 
 }  // namespace
 
-std::vector<QueuedMessage> Queue::take_acked(uint64_t frame_id) {
+std::vector<QueuedMessage> Queue::take_acked(uint64_t frame_id,
+                                             const std::function<bool(const QueuedMessage&)>& keep) {
   std::vector<QueuedMessage> acked;
   std::vector<int64_t> still_in_flight;
   for (int64_t id : in_flight_ids_) {
     auto it = find(id);
     if (it->in_flight_frame != frame_id) {
       still_in_flight.push_back(id);
+      continue;
+    }
+    if (keep && keep(*it)) {
+      it->in_flight_frame = 0;  // held: queued, not in flight, not acked
       continue;
     }
     acked.push_back(std::move(*it));

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <deque>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -65,8 +66,11 @@ class Queue {
   // ack) when frame_id != 0, else removed.
   void mark_sent(int64_t id, uint64_t frame_id, double now);
 
-  // Removes and returns the messages in flight in `frame_id`.
-  std::vector<QueuedMessage> take_acked(uint64_t frame_id);
+  // Removes and returns the messages in flight in `frame_id`, but those
+  // `keep` says yes to (a routed message held for its custody receipt:
+  // queue/routing.h), which stay queued, no longer in flight.
+  std::vector<QueuedMessage> take_acked(uint64_t frame_id,
+                                        const std::function<bool(const QueuedMessage&)>& keep = nullptr);
   // Makes every in-flight message eligible again, calling `released` for
   // each (before its frame id is cleared).
   template <typename Fn>

@@ -174,6 +174,12 @@ class QueueManager {
   bool report_routed(const std::string& type, QueueEventKind kind, const JournalMessage& message,
                      const std::string& detail);
 
+  // Core thread, custody receipts (route/custody_receipt.h): message `id`
+  // of queue `type`, held after its modem's ACK (Routing::keeps_after_ack),
+  // passed custody to its next hop: removed, with its acked event (`detail`,
+  // then routing's acked_detail). False when it is no longer queued.
+  bool custody_passed(const std::string& type, int64_t id, const std::string& detail);
+
   // Logs a "packet" event (QueueEventKind::kPacket): one packet heard from
   // `src`, with its serialized acomms.v1.LinkFigures. Core thread only.
   void record_packet(int32_t src, int32_t dest, std::string link_figures);

@@ -77,6 +77,20 @@ bool QueueManager::report_routed(const std::string& type, QueueEventKind kind, c
   return true;
 }
 
+bool QueueManager::custody_passed(const std::string& type, int64_t id, const std::string& detail) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  auto it = by_name_.find(type);
+  if (it == by_name_.end()) return false;
+  TypeState& state = *it->second;
+  std::optional<QueuedMessage> m = state.queue->take(id);
+  if (!m) return false;
+  const std::string more = routing_ != nullptr ? routing_->acked_detail(*state.queue, *m) : "";
+  const std::string text = more.empty() ? detail : detail + "; " + more;
+  emit(state, clock_.now_seconds(), {.kind = QueueEventKind::kAcked, .message = m->record, .detail = text,
+                                     .removes_message = true});
+  return true;
+}
+
 RoutedForm QueueManager::routed_form(const Queue& queue, const QueuedMessage& next, const DataRequest& request,
                                      double now) {
   if (routing_ == nullptr) return {};

@@ -88,6 +88,21 @@ class Routing {
   // `message` of `queue` expired here (before the expired event).
   virtual void expired(const Queue& queue, const QueuedMessage& message, double now) = 0;
 
+  // Custody receipts on a link whose modem ACKs (route/custody_receipt.h).
+  // Whether `message` of `queue`, whose frame `link` just acknowledged,
+  // stays queued (and journaled), no longer in flight, until the next hop's
+  // custody receipt: routing then ends it (QueueManager::custody_passed) or
+  // offers it again. Default: no, the ACK ends it.
+  virtual bool keeps_after_ack(const Queue& /*queue*/, const QueuedMessage& /*message*/, int /*link*/,
+                               double /*now*/) {
+    return false;
+  }
+  // Bytes routing owes on `link` to `dest` (kAnyDestination: whoever the
+  // transmission goes to): custody receipts for a previous hop, at most
+  // `room` bytes, placed last in the transmission's first frame, room kept
+  // for them before the contest. Non-empty counts as sent. Default: none.
+  virtual std::string owed_on(int /*link*/, int32_t /*dest*/, size_t /*room*/, double /*now*/) { return ""; }
+
   // The policy of the custody queue named `type`, or nullopt when `type` is
   // not a custody queue's name (QueueManager makes such queues on demand,
   // also at restore).

@@ -27,6 +27,7 @@ Forwarder::Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vecto
                      dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock,
                      double custody_ttl_s, PostToCore post)
     : table_(config, links, own_id),
+      codec_(codec),
       own_id_(own_id),
       links_(std::move(links)),
       queues_(queues),
@@ -114,6 +115,8 @@ queue::EnvelopeOutcome Forwarder::on_envelope(std::string_view rest, int32_t tra
     spdlog::warn("route: an envelope inside an envelope's payload (from node {}): not acted on", transmission_src);
     return {};
   }
+  // A next hop's custody receipt (route/custody_receipt.h): not an envelope.
+  if (starts_custody_receipt(rest, envelope_id_)) return on_custody_receipt(rest, transmission_src, now);
   size_t used = 0;
   std::string error;
   std::optional<Envelope> e = decode_envelope(rest, envelope_id_, &used, &error);
@@ -131,7 +134,7 @@ queue::EnvelopeOutcome Forwarder::on_envelope(std::string_view rest, int32_t tra
     ++stats_.overheard;
     return consumed(used);
   }
-  return take_custody(std::move(*e), used, link, now);
+  return take_custody(std::move(*e), used, link, transmission_src, now);
 }
 
 queue::EnvelopeOutcome Forwarder::deliver_here(const Envelope& e, size_t used, int link,
@@ -143,8 +146,15 @@ queue::EnvelopeOutcome Forwarder::deliver_here(const Envelope& e, size_t used, i
   }
   const double forget_after = now + e.ttl_s + kClockSkewS;
   if (starts_envelope(e.payload, envelope_id_)) {
-    // Routing's own payload: a receipt for this node, or nothing valid.
-    std::optional<Receipt> receipt = decode_receipt(e.payload, envelope_id_);
+    // Routing's own payload: a receipt for this node (sealed by its origin
+    // when auth is configured), or nothing valid.
+    const SealCheck seal = check_receipt_seal(e.payload, kReceiptBytes, auth(), e.origin, now, custody_ttl_s_);
+    if (!seal.ok) {
+      refuse_receipt("end-to-end receipt", e.origin, seal.why);
+      return consumed(used);
+    }
+    std::optional<Receipt> receipt;
+    if (seal.used == e.payload.size()) receipt = decode_receipt(e.payload.substr(0, kReceiptBytes), envelope_id_);
     if (!receipt) {
       ++stats_.malformed;
       spdlog::warn("route: envelope {}/{} holds another envelope: dropped", e.origin, e.seq);
@@ -179,11 +189,15 @@ queue::EnvelopeOutcome Forwarder::deliver_here(const Envelope& e, size_t used, i
   return outcome;
 }
 
-queue::EnvelopeOutcome Forwarder::take_custody(Envelope e, size_t used, int link, double now) {
+queue::EnvelopeOutcome Forwarder::take_custody(Envelope e, size_t used, int link, int32_t from, double now) {
+  // This link's modem ACKed already: the answer that counts is a custody
+  // receipt (route/custody_receipt.h) to `from`, the previous hop.
+  const bool modem_acks = hardware_ack_links_.count(link) > 0;
   if (e.hops >= e.hop_limit) {
     ++stats_.hop_limit_dropped;
     spdlog::warn("route: message {}/{} for node {} dropped after {} hops (its limit: a routing loop?)", e.origin,
                  e.seq, e.destination, e.hops);
+    if (modem_acks) owe_custody_receipt(link, from, e.identity(), true);
     return consumed(used);  // acknowledged: the loop ends here
   }
   if (e.ttl_s == 0) {
@@ -191,38 +205,39 @@ queue::EnvelopeOutcome Forwarder::take_custody(Envelope e, size_t used, int link
     spdlog::warn("route: message {}/{} for node {} arrived with no ttl left: dropped", e.origin, e.seq,
                  e.destination);
     report_expired(e, now);
+    if (modem_acks) owe_custody_receipt(link, from, e.identity(), true);
     return consumed(used);
   }
   if (auto it = pending_.find(e.identity()); it != pending_.end()) {
     // A resend while the first copy is being stored: ACKed only if that
     // store succeeds, as the first is.
     ++stats_.custody_copies;
+    if (modem_acks) receipt_on_commit_[e.identity()] = {link, from};
     return taken_only_if(used, it->second);
   }
   if (holds(e.identity())) {
-    ++stats_.custody_copies;  // a resend whose ACK was lost: ours already
+    ++stats_.custody_copies;  // a resend whose ACK (or receipt) was lost: ours already
+    if (modem_acks) owe_custody_receipt(link, from, e.identity(), true);
     return consumed(used);
   }
   if (held() >= max_custody_) {
-    if (hardware_ack_links_.count(link) == 0) {
-      ++stats_.custody_refused;
-      // Once per burst: the previous hop resends every slot while it lasts.
-      if (!refusing_) {
-        spdlog::warn("route: custody of message {}/{} for node {} refused: {} held (routing.max_custody); the "
-                     "previous hop keeps it",
-                     e.origin, e.seq, e.destination, held());
-      }
-      refusing_ = true;
-      return taken_only_if(used, std::make_shared<std::atomic<bool>>(false));
+    ++stats_.custody_refused;
+    // Once per burst: the previous hop resends every slot while it lasts.
+    if (!refusing_) {
+      spdlog::warn("route: custody of message {}/{} for node {} refused: {} held (routing.max_custody); the "
+                   "previous hop keeps it{}",
+                   e.origin, e.seq, e.destination, held(), modem_acks ? " (custody receipt: refused)" : "");
     }
-    // The modem of this link has ACKed it already: the previous hop has
-    // forgotten it, so refusing would lose it.
-    ++stats_.custody_over_bound;
-    spdlog::warn("route: custody of message {}/{} for node {} taken over routing.max_custody ({} held): link {} ACKs "
-                 "in its modem, so the previous hop no longer has it",
-                 e.origin, e.seq, e.destination, held(), link_name(link));
+    refusing_ = true;
+    if (modem_acks) {
+      // The modem ACKed it; the previous hop keeps it until our receipt.
+      owe_custody_receipt(link, from, e.identity(), false);
+      return consumed(used);
+    }
+    return taken_only_if(used, std::make_shared<std::atomic<bool>>(false));
   }
   refusing_ = false;
+  if (modem_acks) receipt_on_commit_[e.identity()] = {link, from};
   ++e.hops;
   const MessageIdentity identity = e.identity();
   queue::JournalMessage record;
@@ -252,6 +267,9 @@ queue::RoutedForm Forwarder::outgoing(const queue::Queue& queue, const queue::Qu
   if (!custody && next->node == dest) return {};  // a neighbour: plain DCCL
   if (next->link != link_name(request.link)) return hold();
   Envelope e;
+  // Its modem ACKed it on the last offer; the next hop's custody receipt
+  // is awaited (forwarder_custody.cpp).
+  if (awaiting_custody_receipt(queue, message, now)) return hold();
   if (custody) {
     std::optional<Envelope> held = held_envelope(message, envelope_id_);
     if (!held) return hold();  // cannot happen: we wrote it
@@ -282,6 +300,9 @@ queue::RoutedForm Forwarder::outgoing(const queue::Queue& queue, const queue::Qu
 std::string Forwarder::waiting(const queue::Queue& queue, const queue::QueuedMessage& message) const {
   ACOMMS_ASSERT_CORE_THREAD();
   const int32_t dest = message.record.dest;
+  if (auto h = held_for_receipt_.find(message.record.id); h != held_for_receipt_.end()) {
+    return "awaiting the custody receipt of node " + std::to_string(h->second.next_hop);
+  }
   if (!is_custody(queue.type()) && (dest == queue::kBroadcast || dest == own_id_)) return "";
   std::optional<NextHop> next = table_.next_hop(dest, clock_.now_seconds());
   if (!next) return "no route to node " + std::to_string(dest);
@@ -296,7 +317,8 @@ std::string Forwarder::waiting(const queue::Queue& queue, const queue::QueuedMes
 
 // An end-to-end ack or expiry report in custody says so (queue ls).
 std::string Forwarder::receipt_json(const std::string& payload) const {
-  std::optional<Receipt> receipt = decode_receipt(payload, envelope_id_);
+  // Sealed or not (route/receipt_seal.h): its first bytes say which.
+  std::optional<Receipt> receipt = decode_receipt(std::string_view(payload).substr(0, kReceiptBytes), envelope_id_);
   if (!receipt) return "";
   return ",\"receipt\":\"" + std::string(to_string(receipt->kind)) + "\",\"about_seq\":" + std::to_string(receipt->seq);
 }
@@ -321,8 +343,9 @@ std::optional<queue::QueuePolicy> Forwarder::custody_policy(const std::string& t
   policy.ack = true;
   policy.value_base = tenths / 10.0;
   policy.ttl_s = custody_ttl_s_;
-  // Twice the bound: room for what a hardware-ACK link makes this node
-  // take over it (take_custody); past that even those are refused.
+  // Twice the bound: room, at restore, for what a modem-ACK link made a
+  // node take over the bound before custody receipts (take_custody now
+  // refuses at the bound on every link).
   policy.max_queue = max_custody_ * 2;
   policy.newest_first = false;  // forwarded in the order they came
   policy.on_full = queue::QueuePolicy::OnFull::kRefuseNew;

@@ -27,12 +27,20 @@
 //    as they came, with their remaining ttl restamped, to the route's next
 //    hop on its link; they wait while there is no route. A held message
 //    never blocks a sendable one behind it (queue/frame_building.cpp).
-//    A link whose modem ACKs in hardware (Micro-Modem, Iridium: Driver::
-//    acks_in_hardware) cannot withhold its ACK: the previous hop forgets
-//    the message as the modem answers. There, full custody takes it over
-//    routing.max_custody (a soft bound, warned and counted) rather than
-//    lose it; only links with software ACKs (sim, udp, Micro-Modem FDP)
-//    leave a refused message with the previous hop.
+//    A link whose modem ACKs in hardware (Micro-Modem without FDP,
+//    Iridium: Driver::acks_in_hardware) cannot withhold its ACK. There the
+//    hop's answer is a custody receipt in software (route/custody_
+//    receipt.h, 56 bits): "taken" once the custody commit is done (or the
+//    copy is already held), "refused" when custody is full (nothing is
+//    stored, routing.max_custody is a hard bound on every link). The
+//    previous hop keeps the message, queued and journaled, past its
+//    modem's ACK until "taken"; it offers it again after "refused" or
+//    when no receipt came in time, with a back-off (forwarder_custody.cpp).
+//    Each hop is judged by its own link: a node with a software-ACK
+//    acoustic link and an Iridium link withholds ACKs on the one and sends
+//    custody receipts on the other. Both ends of one link must agree (the
+//    same driver kind, the same FDP setting); a receipt the sender does not
+//    wait for is ignored there.
 //  - Destination. An envelope for this node is unwrapped and received like
 //    any frame, from its origin, once per identity (origin, sequence): a
 //    second copy within its ttl is counted and dropped, after a restart
@@ -48,6 +56,8 @@
 //    neighbour there), an ACK from it, and an envelope's origin through the
 //    node that handed it over (route/route_table.h).
 // An envelope inside an envelope's payload is never acted on.
+// With auth configured, every receipt is sealed and checked (route/
+// receipt_seal.h): a forged one changes nothing.
 
 // Threads: core thread only (queue::Routing's calls), but for the journal's
 // completion of a custody append, which posts to the core (PostToCore).
@@ -66,10 +76,12 @@
 #include "dccl/codec.h"
 #include "queue/queue_manager.h"
 #include "queue/routing.h"
+#include "route/custody_receipt.h"
 #include "route/delivered_identities.h"
 #include "route/end_to_end_ack.h"
 #include "route/envelope.h"
 #include "route/receipt.h"
+#include "route/receipt_seal.h"
 #include "route/route_table.h"
 
 namespace acomms::route {
@@ -88,9 +100,16 @@ struct ForwarderStats {
   uint64_t expired_dropped = 0;    // envelopes that arrived with no ttl left
   uint64_t malformed = 0;          // bytes that start like an envelope but are not one
   uint64_t overheard = 0;          // envelopes for others addressed to another next hop
-  uint64_t custody_over_bound = 0; // taken past max_custody: the modem had ACKed them
   uint64_t receipts_sent = 0;      // end-to-end acks and expiry reports originated here
   uint64_t receipts_received = 0;  // ... that reached this node, as the origin
+  // Custody receipts (route/custody_receipt.h), links whose modem ACKs:
+  uint64_t custody_receipts_sent = 0;      // "taken" and "refused" sent to a previous hop
+  uint64_t custody_receipts_received = 0;  // ... heard about a message this node held for one
+  uint64_t custody_receipts_ignored = 0;   // ... about nothing this node waits for, or from another node
+  uint64_t custody_reoffered = 0;          // messages offered again: refused, or no receipt in time
+  // Receipts (end-to-end or custody) refused: unsealed, forged or stale
+  // while auth is configured (route/receipt_seal.h).
+  uint64_t receipts_refused = 0;
 };
 
 class Forwarder final : public queue::Routing {
@@ -137,6 +156,24 @@ class Forwarder final : public queue::Routing {
   queue::RoutedForm outgoing(const queue::Queue& queue, const queue::QueuedMessage& message,
                              const queue::DataRequest& request, double now) override;
   std::optional<queue::QueuePolicy> custody_policy(const std::string& type) const override;
+  bool keeps_after_ack(const queue::Queue& queue, const queue::QueuedMessage& message, int link,
+                       double now) override;
+  std::string owed_on(int link, int32_t dest, size_t room, double now) override;
+
+  // A sent message held for its next hop's custody receipt
+  // (forwarder_custody.cpp), by journal id: until when, and from whom.
+  struct HeldForReceipt {
+    MessageIdentity identity;
+    std::string type;
+    int32_t next_hop = 0;
+    int32_t destination = 0;
+    double until = 0;
+    bool refused = false;  // the next hop said "refused" to its last offer
+  };
+  const std::map<int64_t, HeldForReceipt>& held_for_receipt() const { return held_for_receipt_; }
+  // The wait for a custody receipt after the `offers`-th offer: 600 s
+  // doubling, at most an hour.
+  static double receipt_wait_s(int offers);
   std::string on_sent(const queue::Queue& queue, const queue::QueuedMessage& message, const queue::RoutedForm& form,
                       double now) override;
   std::string acked_detail(const queue::Queue& queue, const queue::QueuedMessage& message) override;
@@ -154,12 +191,26 @@ class Forwarder final : public queue::Routing {
                             std::shared_ptr<std::atomic<bool>> taken);
   queue::EnvelopeOutcome deliver_here(const Envelope& e, size_t used, int link,
                                       std::optional<std::string_view> link_figures, double now);
-  queue::EnvelopeOutcome take_custody(Envelope e, size_t used, int link, double now);
+  queue::EnvelopeOutcome take_custody(Envelope e, size_t used, int link, int32_t from, double now);
+  // forwarder_custody.cpp: custody receipts.
+  void owe_custody_receipt(int link, int32_t to, MessageIdentity about, bool taken);
+  queue::EnvelopeOutcome on_custody_receipt(std::string_view rest, int32_t src, double now);
+  // Whether `message` waits for a custody receipt now (outgoing: hold); a
+  // wait that ran out offers it again.
+  bool awaiting_custody_receipt(const queue::Queue& queue, const queue::QueuedMessage& message, double now);
+  void note_wrapped_send(const queue::QueuedMessage& message, const queue::RoutedForm& form);
+  void forget_sent(int64_t message_id);
   bool holds(const MessageIdentity& identity) const;
   const std::string& link_name(int link) const;
+  // The fleet's authenticator, or null: receipts sealed and checked with it
+  // (route/receipt_seal.h).
+  const dccl::MessageAuthenticator* auth() const { return codec_.authenticator(); }
+  // A receipt from `from` refused by its seal: counted and logged.
+  void refuse_receipt(const char* what, int32_t from, const std::string& why);
   std::string receipt_json(const std::string& payload) const;
 
   RouteTable table_;
+  const dccl::Codec& codec_;
   int32_t own_id_;
   std::vector<std::string> links_;
   queue::QueueManager& queues_;
@@ -179,6 +230,22 @@ class Forwarder final : public queue::Routing {
   size_t pending_receipts_ = 0;  // receipts being journaled
   std::set<int> hardware_ack_links_;
   ForwarderStats stats_;
+  // Custody receipts (forwarder_custody.cpp). Owed to previous hops, sent
+  // in this node's next frame on their link:
+  struct OwedReceipt {
+    int link = 0;
+    int32_t to = 0;
+    MessageIdentity about;
+    bool taken = false;
+  };
+  std::vector<OwedReceipt> owed_;
+  // Custody being journaled that came on a modem-ACK link: its receipt
+  // goes once the commit is done (link, previous hop).
+  std::map<MessageIdentity, std::pair<int, int32_t>> receipt_on_commit_;
+  // Wrapped sends awaiting their link's ACK, by journal id (bounded).
+  std::map<int64_t, HeldForReceipt> wrapped_;
+  std::map<int64_t, HeldForReceipt> held_for_receipt_;
+  std::map<int64_t, int> offers_;  // offers so far of a held message (back-off)
 };
 
 }  // namespace acomms::route

@@ -32,7 +32,14 @@ void Forwarder::journal_into_custody(queue::JournalMessage record, MessageIdenti
       } else {
         pending_.erase(identity);
       }
+      // Custody that came on a modem-ACK link: its receipt, now.
+      std::optional<std::pair<int, int32_t>> answer;
+      if (auto r = receipt_on_commit_.find(identity); !receipt && r != receipt_on_commit_.end()) {
+        answer = r->second;
+        receipt_on_commit_.erase(r);
+      }
       if (!ok) {
+        if (answer) owe_custody_receipt(answer->first, answer->second, identity, false);
         if (receipt) {
           spdlog::error("route: {} for node {} not stored: not sent", record.type, record.dest);
         } else {
@@ -45,7 +52,9 @@ void Forwarder::journal_into_custody(queue::JournalMessage record, MessageIdenti
       message.record = record;
       message.record.id = id;
       message.encoded = record.payload;
-      if (!queues_.accept_custody(std::move(message)) && taken) taken->store(false);
+      const bool accepted = queues_.accept_custody(std::move(message));
+      if (!accepted && taken) taken->store(false);
+      if (answer) owe_custody_receipt(answer->first, answer->second, identity, accepted);
     });
   });
 }
@@ -65,6 +74,7 @@ void Forwarder::originate_receipt(int32_t to, Receipt receipt, uint8_t value_ten
   e.ttl_s = ttl_to_seconds(custody_ttl_s_);
   e.value_tenths = value_tenths;  // as urgent as the message it is about
   e.payload = encode_receipt(receipt, envelope_id_);
+  seal_receipt(e.payload, auth(), now);  // as this node, when auth is configured
   queue::JournalMessage record;
   record.type = custody_queue(value_tenths);
   record.payload = encode_envelope(e, envelope_id_);
@@ -75,6 +85,13 @@ void Forwarder::originate_receipt(int32_t to, Receipt receipt, uint8_t value_ten
   ++stats_.receipts_sent;
   spdlog::debug("route: {} receipt of message {}/{} to node {}", to_string(receipt.kind), to, receipt.seq, to);
   journal_into_custody(std::move(record), {}, nullptr);
+}
+
+void Forwarder::refuse_receipt(const char* what, int32_t from, const std::string& why) {
+  ++stats_.receipts_refused;
+  spdlog::warn("route: {} from node {} refused: {} (with auth configured every receipt must be sealed by the node "
+               "that reports)",
+               what, from, why);
 }
 
 void Forwarder::report_expired(const Envelope& e, double now) {
@@ -123,6 +140,7 @@ std::string Forwarder::on_sent(const queue::Queue& queue, const queue::QueuedMes
   if (!is_custody(queue.type())) {
     awaiting_.sent({message.record.id, queue.type(), message.record.dest, form.next_hop, now});
   }
+  note_wrapped_send(message, form);
   return "to node " + std::to_string(message.record.dest) + " through node " + std::to_string(form.next_hop);
 }
 
@@ -137,6 +155,7 @@ std::string Forwarder::acked_detail(const queue::Queue& queue, const queue::Queu
 
 void Forwarder::expired(const queue::Queue& queue, const queue::QueuedMessage& message, double now) {
   ACOMMS_ASSERT_CORE_THREAD();
+  forget_sent(message.record.id);
   if (!is_custody(queue.type())) return;
   if (std::optional<Envelope> e = held_envelope(message, envelope_id_)) report_expired(*e, now);
 }

@@ -7,7 +7,9 @@
 //  - a copy arriving while the first was being stored was ACKed whether
 //    or not that store succeeded;
 //  - on a link whose modem ACKs in hardware, refusing custody lost the
-//    message (the previous hop had forgotten it at the modem's ACK).
+//    message (the previous hop had forgotten it at the modem's ACK); then
+//    taking it over routing.max_custody broke the bound. Now the buoy
+//    stores nothing and answers with a custody receipt ("refused").
 
 #include "gateway_network.h"
 
@@ -111,25 +113,32 @@ TEST_F(GatewayNetwork, ACopyArrivingWhileTheFirstIsStoredIsAcknowledgedOnlyIfThe
   EXPECT_EQ(buoy_->custody_held(), 0u);
 }
 
-TEST_F(GatewayNetwork, FullCustodyOnALinkWhoseModemAcksTakesTheMessageRatherThanLoseIt) {
+TEST_F(GatewayNetwork, FullCustodyOnALinkWhoseModemAcksStoresNothingAndAnswersWithACustodyReceipt) {
   build_buoy("max_custody: 1");
   buoy_->queues->set_acks_in_hardware(0, true);  // "sat": an Iridium modem's
   buoy_->queues->receive(command_envelope(1), 1, std::nullopt, 0, 2);
   ASSERT_EQ(buoy_->custody_held(), 1u);
-  buoy_->queues->take_ack_conditions();
+  buoy_->queues->take_ack_conditions();  // the modem ACKed already: they decide nothing there
   buoy_->queues->receive(command_envelope(2), 1, std::nullopt, 0, 2);
-  EXPECT_EQ(buoy_->custody_held(), 2u);
-  EXPECT_EQ(buoy_->forwarder->stats().custody_over_bound, 1u);
-  EXPECT_EQ(buoy_->forwarder->stats().custody_refused, 0u);
-  // The same on a link with software ACKs: refused, the ACK withheld.
+  EXPECT_EQ(buoy_->custody_held(), 1u) << "routing.max_custody is a hard bound on every link";
+  EXPECT_EQ(buoy_->forwarder->stats().custody_refused, 1u);
+  // What the buoy owes the shore on "sat": "taken" for 1/1, "refused" for 1/2.
+  const double now = scheduler_.clock().now_seconds();
+  EXPECT_EQ(buoy_->forwarder->owed_on(0, 1, 100, now),
+            route::encode_custody_receipt({route::CustodyVerdict::kTaken, {1, 1}}, route::kDefaultEnvelopeId) +
+                route::encode_custody_receipt({route::CustodyVerdict::kRefused, {1, 2}}, route::kDefaultEnvelopeId));
+  EXPECT_EQ(buoy_->forwarder->owed_on(0, 1, 100, now), "") << "each receipt goes once";
+  EXPECT_EQ(buoy_->forwarder->stats().custody_receipts_sent, 2u);
+  // The same on a link with software ACKs: refused, the ACK withheld, no receipt.
   buoy_->queues->set_acks_in_hardware(0, false);
   buoy_->queues->take_ack_conditions();
   buoy_->queues->receive(command_envelope(3), 1, std::nullopt, 0, 2);
   auto conditions = buoy_->queues->take_ack_conditions();
   ASSERT_EQ(conditions.size(), 1u);
   EXPECT_FALSE(conditions[0]->load());
-  EXPECT_EQ(buoy_->custody_held(), 2u);
-  EXPECT_EQ(buoy_->forwarder->stats().custody_refused, 1u);
+  EXPECT_EQ(buoy_->custody_held(), 1u);
+  EXPECT_EQ(buoy_->forwarder->stats().custody_refused, 2u);
+  EXPECT_EQ(buoy_->forwarder->owed_on(0, 1, 100, now), "");
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "link/link_choice.h"
 #include "link/link_controller.h"
 #include "mac/mac_factory.h"
+#include "modem_ack_driver.h"
 #include "queue/memory_journal.h"
 #include "route/forwarder.h"
 #include "sim/sim_driver.h"
@@ -91,6 +92,7 @@ struct LinkSpec {
   std::shared_ptr<drivers::SimChannel> channel;
   std::string cycle;  // v1::MacConfig text
   double cost = 0;    // LinkConfig.cost
+  bool modem_acks = false;  // the modem ACKs in hardware (modem_ack_driver.h)
 };
 
 // One node: queues, forwarder and one link per LinkSpec. The journal is
@@ -125,6 +127,7 @@ struct GatewayNode {
       driver_config.set_name("sim");
       driver_config.set_modem_id(static_cast<uint32_t>(id));
       l.driver = std::make_unique<drivers::SimDriver>(driver_config, scheduler, specs[i].channel);
+      if (specs[i].modem_acks) l.modem = std::make_unique<ModemAckDriver>(*l.driver);
       v1::MacConfig mac_config;
       EXPECT_TRUE(google::protobuf::TextFormat::ParseFromString(specs[i].cycle, &mac_config));
       l.mac = mac::make_mac(mac_config, id, scheduler);
@@ -136,7 +139,7 @@ struct GatewayNode {
       // As the daemon: ACKs wait for the store (here at once) and for custody.
       options.after_receipt_durable = [](std::function<void()> then) { then(); };
       l.controller = std::make_unique<link::LinkController>(
-          id, *queues, *l.mac, *l.driver,
+          id, *queues, *l.mac, l.modem ? static_cast<link::Driver&>(*l.modem) : *l.driver,
           [this](queue::ReceivedMessage m, const v1::ModemTransmission&) {
             received.push_back({m.type, m.src, m.encoded});
           },
@@ -160,6 +163,7 @@ struct GatewayNode {
 
   struct Link {
     std::unique_ptr<drivers::SimDriver> driver;
+    std::unique_ptr<ModemAckDriver> modem;  // set: the link's modem ACKs
     std::unique_ptr<mac::Mac> mac;
     std::unique_ptr<link::LinkController> controller;
   };
