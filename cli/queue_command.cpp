@@ -23,6 +23,20 @@ struct QueueOptions {
   std::string reason;
 };
 
+// A gateway's note before the message: "(waits: no route to node 5)", or
+// where it goes next, "(next hop 2 on sat)".
+std::string routing_text(const v1::QueuedMessage& m) {
+  std::string note;
+  if (!m.waiting().empty()) {
+    note = "(waits: " + m.waiting() + ") ";
+  } else if (m.next_hop() != 0 && m.next_hop() != m.dest()) {
+    note = "(next hop " + std::to_string(m.next_hop()) + " on " + m.next_link() + ") ";
+  } else if (m.next_hop() != 0) {
+    note = "(neighbour, on " + m.next_link() + ") ";
+  }
+  return note + m.json();
+}
+
 void run_ls(const GlobalOptions& global, const QueueOptions& options) {
   v1::ListQueuedRequest request;
   request.set_type(options.type);
@@ -40,8 +54,7 @@ void run_ls(const GlobalOptions& global, const QueueOptions& options) {
     std::string expires = m.expires_at() > 0 ? std::to_string(static_cast<long long>(m.expires_at() - now)) + "s" : "-";
     std::printf("%-8lld %-28s %-8s %-25s %9s %5u %-9s %s\n", static_cast<long long>(m.message_id()), m.type().c_str(),
                 route_text(m.src(), m.dest()).c_str(), utc_text(m.submitted_at()).c_str(), expires.c_str(),
-                m.encoded_bytes(), m.in_flight() ? "in-flight" : "queued",
-                m.waiting().empty() ? m.json().c_str() : ("(waits: " + m.waiting() + ") " + m.json()).c_str());
+                m.encoded_bytes(), m.in_flight() ? "in-flight" : "queued", routing_text(m).c_str());
   }
   if (response.truncated()) std::printf("(more messages are queued; raise --limit to see them)\n");
 }
@@ -84,17 +97,18 @@ void run_stats(const GlobalOptions& global, const QueueOptions& options) {
     print_json(response);
     return;
   }
-  std::printf("%-28s %6s %5s %6s %8s %7s %6s %6s %7s %7s %7s %7s %8s  %-14s %s\n", "TYPE", "ID", "SIZE", "FLIGHT",
-              "PRIORITY", "QUEUED", "SENT", "ACKED", "EXPIRED", "DROPPED", "REFUSED", "RETRIED", "RECEIVED", "POLICY",
-              "LAST SENT");
+  std::printf("%-28s %6s %5s %6s %8s %7s %6s %6s %7s %7s %7s %7s %8s %9s %7s  %-14s %s\n", "TYPE", "ID", "SIZE",
+              "FLIGHT", "PRIORITY", "QUEUED", "SENT", "ACKED", "EXPIRED", "DROPPED", "REFUSED", "RETRIED", "RECEIVED",
+              "DELIVERED", "EXP-FAR", "POLICY", "LAST SENT");
   for (const v1::QueueStatsEntry& q : response.queues()) {
     std::string policy = std::to_string(q.policy().max_queue()) + " " + on_full_text(q.policy());
-    std::printf("%-28s %6d %5u %6u %8.3g %7llu %6llu %6llu %7llu %7llu %7llu %7llu %8llu  %-14s %s\n",
+    std::printf("%-28s %6d %5u %6u %8.3g %7llu %6llu %6llu %7llu %7llu %7llu %7llu %8llu %9llu %7llu  %-14s %s\n",
                 q.type().c_str(), q.dccl_id(), q.size(), q.in_flight(), q.priority(),
                 static_cast<unsigned long long>(q.queued()), static_cast<unsigned long long>(q.sent()),
                 static_cast<unsigned long long>(q.acked()), static_cast<unsigned long long>(q.expired()),
                 static_cast<unsigned long long>(q.dropped()), static_cast<unsigned long long>(q.refused()),
                 static_cast<unsigned long long>(q.retried()), static_cast<unsigned long long>(q.received()),
+                static_cast<unsigned long long>(q.delivered()), static_cast<unsigned long long>(q.expired_remote()),
                 policy.c_str(), utc_text(q.last_sent()).c_str());
   }
 }
@@ -113,7 +127,10 @@ void add_queue_command(CLI::App& app, const GlobalOptions& global) {
   ls->add_option("--limit", options.limit, "At most this many (default 1000, most 10000)")->type_name("N");
   ls->footer(
       "Columns: message id, type, source>destination, when submitted, seconds until it expires, encoded "
-      "bytes on the wire, queued or in-flight (sent, awaiting its ack), and the message.\n\n"
+      "bytes on the wire, queued or in-flight (sent, awaiting its ack), and the message. On a gateway (config "
+      "`routing`) the message is preceded by why it waits, \"(waits: no route to node 5)\", or by where its "
+      "route takes it next, \"(next hop 2 on sat)\" (\"(neighbour, on acoustic)\": its destination is heard "
+      "there).\n\n"
       "Example:\n  acommsctl queue ls gv.NavigationReport --limit 20");
   ls->callback([&global] { run_ls(global, options); });
 
@@ -135,7 +152,9 @@ void add_queue_command(CLI::App& app, const GlobalOptions& global) {
   stats->add_option("TYPE", options.types, "Only these types (default: every queue)")->type_name("");
   stats->footer(
       "Per queue: messages held and in flight, priority in the contest for the next frame, counters "
-      "since the daemon started (queued, sent, acked, expired, dropped, refused, retried, received), the "
+      "since the daemon started (queued, sent, acked, expired, dropped, refused, retried, received; on a "
+      "gateway's origin also DELIVERED, routed messages whose end-to-end ack came back, and EXP-FAR, routed "
+      "messages reported expired at another node: EXPIRED counts only those whose ttl ran out here), the "
       "max_queue and on_full policy, and when it last sent.\n\n"
       "Example:\n  acommsctl queue stats --json | jq '.queues[] | {type, size, dropped}'");
   stats->callback([&global] { run_stats(global, options); });

@@ -58,8 +58,9 @@ void add_route_command(CLI::App& app, const GlobalOptions& global) {
       "Lists the node's routes: static ones (config `routing { route { ... } }`) in config order, then "
       "those learned from traffic: `heard` (the node was heard on the link) and `relayed` (its messages came "
       "through the next hop), with when each was last confirmed; a learned route older than "
-      "routing.learned_max_age_s is stale and not used. Then what the node holds for others and what it "
-      "dropped. Fails on a node without `routing`.\n\n"
+      "routing.learned_max_age_s is stale and not used. Learned routes are kept in the store: after a restart "
+      "they are listed again with their last confirmation (the time down counts in their age). Then what the "
+      "node holds for others and what it dropped. Fails on a node without `routing`.\n\n"
       "Examples:\n  acommsctl route ls\n  acommsctl route ls --json");
   ls->callback([&global] { run_ls(global); });
 }

@@ -163,10 +163,10 @@ void Daemon::build_routing() {
   for (const v1::LinkConfig& link : core::node_links(config_)) links.push_back(link.name());
   try {
     const double ttl_s = queue::resolve_policy({}, config_.queue().defaults(), "queue.defaults").ttl_s;
-    forwarder_ = std::make_unique<route::Forwarder>(config_.routing(), own_id_, std::move(links), *codec_, *queues_,
-                                                    clock_, ttl_s, [this](std::function<void()> work) {
-                                                      core_->post(std::move(work));
-                                                    });
+    route_journal_ = std::make_unique<route::RouteJournal>(*writer_);
+    forwarder_ = std::make_unique<route::Forwarder>(
+        config_.routing(), own_id_, std::move(links), *codec_, *queues_, clock_, ttl_s,
+        [this](std::function<void()> work) { core_->post(std::move(work)); }, route_journal_.get());
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("routing config: ") + e.what());
   }
@@ -346,6 +346,7 @@ void Daemon::stop() {
   definitions_.reset();
   queues_.reset();
   forwarder_.reset();  // after the queues, which call it
+  route_journal_.reset();  // after the forwarder, which writes through it (the writer is flushed above)
   consistency_.reset();  // after the queues, which call it (the core is stopped: nothing reads the MACs it points to)
   // Every event recorded so far reaches the disk before the store closes.
   if (writer_) {

@@ -86,6 +86,8 @@ class Daemon {
   std::unique_ptr<queue::QueueManager> queues_;
   std::unique_ptr<DefinitionLoader> definitions_;
   // The gateway (config `routing`); null without. The queues call it.
+  // Its notes and learned routes go to the store through route_journal_.
+  std::unique_ptr<route::RouteJournal> route_journal_;
   std::unique_ptr<route::Forwarder> forwarder_;
   service::SubscriberHub subscribers_;
   std::unique_ptr<core::EventLoop> core_;

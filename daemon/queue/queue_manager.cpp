@@ -83,7 +83,7 @@ void QueueManager::emit(TypeState& state, double now, const Change& change) {
     case QueueEventKind::kQueued: ++s.queued; break;
     case QueueEventKind::kSent: ++s.sent; break;
     case QueueEventKind::kAcked: ++s.acked; break;
-    case QueueEventKind::kExpired: ++s.expired; break;
+    case QueueEventKind::kExpired: ++(change.remote ? s.expired_remote : s.expired); break;
     case QueueEventKind::kDropped: ++s.dropped; break;
     case QueueEventKind::kRetry: ++s.retried; break;
     case QueueEventKind::kReceived: ++s.received; break;

@@ -170,7 +170,8 @@ class QueueManager {
   std::vector<RoutedIdentity> routed_delivered() { return journal_.routed_since(clock_.now_seconds()); }
   // Core thread: logs and journals what routing learned of `message` (of
   // queue `type`) after it left the queue (an end-to-end ack: kDelivered; an
-  // expiry report: kExpired). False when no queue has that name.
+  // expiry report: kExpired, counted in QueueStats::expired_remote, not
+  // expired). False when no queue has that name.
   bool report_routed(const std::string& type, QueueEventKind kind, const JournalMessage& message,
                      const std::string& detail);
 
@@ -303,6 +304,7 @@ class QueueManager {
     std::optional<std::string_view> link_figures = std::nullopt;  // kReceived: its transmission's
     std::optional<uint32_t> auth_sent_s = std::nullopt;           // kReceived, authenticated: its stamp
     int32_t auth_sender = -1;                                      // with auth_sent_s: the transmission's src
+    bool remote = false;  // reported from afar (report_routed): kExpired counts in expired_remote
   };
   // Counts, logs and journals `change` to a message of `state`'s type, at `now`.
   void emit(TypeState& state, double now, const Change& change);

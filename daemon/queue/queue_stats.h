@@ -8,7 +8,8 @@ struct QueueStats {
   uint64_t queued = 0;
   uint64_t sent = 0;
   uint64_t acked = 0;
-  uint64_t expired = 0;
+  uint64_t expired = 0;         // ttl ran out in this node's queue
+  uint64_t expired_remote = 0;  // routed: reported expired at another node on the way
   uint64_t dropped = 0;
   uint64_t retried = 0;
   uint64_t received = 0;

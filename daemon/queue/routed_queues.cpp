@@ -73,7 +73,7 @@ bool QueueManager::report_routed(const std::string& type, QueueEventKind kind, c
   ACOMMS_ASSERT_CORE_THREAD();
   auto it = by_name_.find(type);
   if (it == by_name_.end()) return false;
-  emit(*it->second, clock_.now_seconds(), {.kind = kind, .message = message, .detail = detail});
+  emit(*it->second, clock_.now_seconds(), {.kind = kind, .message = message, .detail = detail, .remote = true});
   return true;
 }
 

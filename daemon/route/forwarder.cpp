@@ -25,7 +25,7 @@ queue::RoutedForm hold() {
 
 Forwarder::Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vector<std::string> links,
                      dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock,
-                     double custody_ttl_s, PostToCore post)
+                     double custody_ttl_s, PostToCore post, RouteJournal* journal)
     : table_(config, links, own_id),
       codec_(codec),
       own_id_(own_id),
@@ -58,6 +58,9 @@ Forwarder::Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vecto
   for (const queue::RoutedIdentity& r : queues_.routed_delivered()) {
     delivered_.remember({static_cast<uint16_t>(r.origin), static_cast<uint16_t>(r.seq)}, r.forget_after);
   }
+  // And what it sent awaiting end-to-end acks, and the routes it learned.
+  awaiting_.attach(journal, clock_.now_seconds());
+  table_.attach(journal, clock_.now_seconds());
 }
 
 const std::string& Forwarder::link_name(int link) const {

@@ -82,6 +82,7 @@
 #include "route/envelope.h"
 #include "route/receipt.h"
 #include "route/receipt_seal.h"
+#include "route/route_journal.h"
 #include "route/route_table.h"
 
 namespace acomms::route {
@@ -122,10 +123,13 @@ class Forwarder final : public queue::Routing {
   // hop_limit, envelope_id, max_custody) or the type whose DCCL id is the
   // envelope's, and reserves that id in `codec` (a type loaded later with
   // it is refused). `queues` and `codec` must outlive the forwarder; call
-  // queues.set_routing(this) before queues.restore().
+  // queues.set_routing(this) before queues.restore(). `journal` (may be
+  // null: memory only) keeps the end-to-end notes and learned routes
+  // across a restart (route_journal.h); it is read here and must outlive
+  // the forwarder.
   Forwarder(const v1::RoutingConfig& config, int32_t own_id, std::vector<std::string> links,
             dccl::Codec& codec, queue::QueueManager& queues, const core::Clock& clock, double custody_ttl_s,
-            PostToCore post);
+            PostToCore post, RouteJournal* journal = nullptr);
 
   const RouteTable& routes() const { return table_; }
   RouteTable& routes() { return table_; }
@@ -137,6 +141,8 @@ class Forwarder final : public queue::Routing {
   std::string custody_json(const queue::Queue& queue, const queue::QueuedMessage& message) const;
   // Every route now (RouteTable::list at the clock's now).
   std::vector<RouteEntry> list_routes() const { return table_.list(clock_.now_seconds()); }
+  // Where a message for `dest` goes next now, or nullopt: no route (queue ls).
+  std::optional<NextHop> next_hop(int32_t dest) const { return table_.next_hop(dest, clock_.now_seconds()); }
   const ForwarderStats& stats() const { return stats_; }
   // Messages held for others now: in custody queues or being journaled.
   size_t held() const;

@@ -118,7 +118,8 @@ void Forwarder::on_receipt(const Envelope& e, const Receipt& receipt) {
   }
   std::optional<RoutedSend> send = awaiting_.take(receipt.seq);
   if (!send) {
-    // Sent before this node restarted (the notes are in memory), or twice.
+    // Sent before a restart of a node with no RouteJournal, long ago
+    // (past the note's forget_after or the bound), or twice.
     spdlog::info("route: {} receipt from node {} for message seq {}, which this node no longer knows",
                  to_string(receipt.kind), e.origin, receipt.seq);
     return;
@@ -138,7 +139,10 @@ std::string Forwarder::on_sent(const queue::Queue& queue, const queue::QueuedMes
                                const queue::RoutedForm& form, double now) {
   ACOMMS_ASSERT_CORE_THREAD();
   if (!is_custody(queue.type())) {
-    awaiting_.sent({message.record.id, queue.type(), message.record.dest, form.next_hop, now});
+    // No receipt can come after the message's ttl, the receipt's own
+    // (custody_ttl_s_, originate_receipt) and the clocks' skew.
+    const double forget_after = now + remaining_ttl(queue, message, now) + custody_ttl_s_ + kClockSkewS;
+    awaiting_.sent({message.record.id, queue.type(), message.record.dest, form.next_hop, now, false, forget_after});
   }
   note_wrapped_send(message, form);
   return "to node " + std::to_string(message.record.dest) + " through node " + std::to_string(form.next_hop);

@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include <spdlog/spdlog.h>
+
 #include "core/core_thread.h"
+#include "route/route_journal.h"
 
 namespace acomms::route {
 namespace {
@@ -26,6 +29,7 @@ const char* to_string(RouteSource source) {
 
 RouteTable::RouteTable(const v1::RoutingConfig& config, std::vector<std::string> links, int32_t own_id)
     : own_id_(own_id),
+      links_(links),
       learned_max_age_s_(config.has_learned_max_age_s() ? config.learned_max_age_s() : kDefaultLearnedMaxAgeS) {
   if (!(learned_max_age_s_ > 0)) {
     throw std::invalid_argument("routing.learned_max_age_s must be > 0 (seconds a learned route stays usable)");
@@ -67,6 +71,32 @@ RouteTable::RouteTable(const v1::RoutingConfig& config, std::vector<std::string>
   }
 }
 
+void RouteTable::attach(RouteJournal* journal, double now) {
+  if (journal == nullptr) return;
+  for (const StoredRoute& stored : journal->load_learned()) {
+    if (stored.dest == own_id_ || stored.next.node == own_id_ ||
+        std::find(links_.begin(), links_.end(), stored.next.link) == links_.end()) {
+      spdlog::info("route: stored route to node {} through node {} on link \"{}\" no longer fits this node: dropped",
+                   stored.dest, stored.next.node, stored.next.link);
+      continue;
+    }
+    const double confirmed = std::min(stored.last_confirmed, now);
+    Learned& learned = learned_[stored.dest];
+    learned.next = stored.next;
+    learned.last_confirmed = confirmed;
+    learned.persisted = confirmed;
+  }
+  journal_ = journal;
+}
+
+void RouteTable::persist(int32_t dest, bool changed) {
+  if (journal_ == nullptr) return;
+  Learned& learned = learned_.at(dest);
+  if (!changed && learned.persisted >= 0 && learned.last_confirmed - learned.persisted < kPersistEveryS) return;
+  learned.persisted = learned.last_confirmed;
+  journal_->save_learned(dest, learned.next, learned.last_confirmed);
+}
+
 std::optional<NextHop> RouteTable::next_hop(int32_t dest, double now) const {
   ACOMMS_ASSERT_CORE_THREAD();
   if (dest == own_id_) return std::nullopt;  // ours: delivered, never routed
@@ -89,7 +119,13 @@ void RouteTable::heard(int32_t node, const std::string& link, double now, bool t
       !two_way && ++it->second.direct_hearings < kDirectHearings) {
     return;  // overheard: the relay that works stays until the node is heard again
   }
-  learned_[node] = {{node, link, RouteSource::kLearnedDirect}, now};
+  const NextHop next{node, link, RouteSource::kLearnedDirect};
+  Learned& learned = learned_[node];
+  const bool changed = !(learned.next == next);
+  learned.next = next;
+  learned.last_confirmed = now;
+  learned.direct_hearings = 0;
+  persist(node, changed);
 }
 
 void RouteTable::heard_through(int32_t origin, int32_t via, const std::string& link, double now) {
@@ -98,7 +134,13 @@ void RouteTable::heard_through(int32_t origin, int32_t via, const std::string& l
   auto it = learned_.find(origin);
   // A neighbour heard directly lately beats a relay.
   if (it != learned_.end() && it->second.next.source == RouteSource::kLearnedDirect && fresh(it->second, now)) return;
-  learned_[origin] = {{via, link, RouteSource::kLearnedRelay}, now};
+  const NextHop next{via, link, RouteSource::kLearnedRelay};
+  Learned& learned = learned_[origin];
+  const bool changed = !(learned.next == next);
+  learned.next = next;
+  learned.last_confirmed = now;
+  learned.direct_hearings = 0;
+  persist(origin, changed);
 }
 
 std::vector<RouteEntry> RouteTable::list(double now) const {

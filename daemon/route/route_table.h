@@ -25,6 +25,14 @@
 //    (both ways work). A learned
 //    route is used until `learned_max_age_s` after it was last confirmed;
 //    older ones are still listed (stale), never chosen.
+// Learned routes outlive a restart when a RouteJournal is attached
+// (route_journal.h, migrations/0015): each is stored with its source and
+// last-confirmed time (the wall clock's, so it ages while the node is
+// down), when it changes and at most every kPersistEveryS while it is only
+// confirmed again (a stored time is at most that much older than the real
+// one: after a restart a route looks older, never younger, than it is).
+// A relay's count of direct hearings is not kept; a stored route for a
+// link the node no longer has, or to the node itself, is dropped at start.
 // Static routes are tried before learned ones: the operator's plan wins.
 // A route never leads to this node itself or to a link it does not have
 // (checked at construction, naming the field).
@@ -41,6 +49,8 @@
 #include "acomms/v1/config.pb.h"
 
 namespace acomms::route {
+
+class RouteJournal;  // route_journal.h
 
 enum class RouteSource { kStatic, kLearnedDirect, kLearnedRelay };
 
@@ -71,6 +81,8 @@ class RouteTable {
   inline static constexpr double kDefaultLearnedMaxAgeS = 1800;
   // Receptions from a node that turn a fresh relayed route to it direct.
   inline static constexpr int kDirectHearings = 3;
+  // A learned route confirmed again is written at most this often.
+  inline static constexpr double kPersistEveryS = 30;
 
   // `links`: the node's link names, first is the default. Throws
   // std::invalid_argument naming routing.route[i] and the field when a
@@ -78,6 +90,12 @@ class RouteTable {
   // min > max or ids outside 1..65535, a next hop that is this node or not
   // in 1..65535, or a link the node does not have.
   RouteTable(const v1::RoutingConfig& config, std::vector<std::string> links, int32_t own_id);
+
+  // Reads back the learned routes `journal` holds (a last-confirmed time
+  // after `now`, the clock having gone back, is taken as `now`) and writes
+  // learned routes through to it from then on. `journal` must outlive
+  // this. At start, before any other call. Throws store::StoreError.
+  void attach(RouteJournal* journal, double now);
 
   // The next hop for `dest` at `now`, or nullopt: the message waits.
   std::optional<NextHop> next_hop(int32_t dest, double now) const;
@@ -107,10 +125,16 @@ class RouteTable {
     NextHop next;
     double last_confirmed;
     int direct_hearings = 0;  // a relayed route: receptions from the node itself since
+    double persisted = -1;    // the last_confirmed last written (-1: not written)
   };
+  // Writes the learned route to `dest` when it changed or kPersistEveryS
+  // passed since it was last written (`changed`: its next hop did).
+  void persist(int32_t dest, bool changed);
   bool fresh(const Learned& learned, double now) const { return now - learned.last_confirmed <= learned_max_age_s_; }
 
   int32_t own_id_;
+  std::vector<std::string> links_;
+  RouteJournal* journal_ = nullptr;
   double learned_max_age_s_;
   std::vector<StaticRoute> static_;
   std::map<int32_t, Learned> learned_;

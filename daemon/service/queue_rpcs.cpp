@@ -62,6 +62,14 @@ grpc::Status AcommsService::ListQueued(grpc::ServerContext* context, const v1::L
         if (node_.forwarder != nullptr) {
           m.set_waiting(node_.forwarder->waiting(*queue, queued));
           m.set_json(node_.forwarder->custody_json(*queue, queued));
+          // Where it goes next by its route now: what an operator reads
+          // as "waits for node 2 on sat" (README "Gateways").
+          if (queued.record.dest != queue::kBroadcast) {
+            if (std::optional<route::NextHop> next = node_.forwarder->next_hop(queued.record.dest)) {
+              m.set_next_hop(next->node);
+              m.set_next_link(next->link);
+            }
+          }
         }
         row.payload = queued.record.payload;
         out.push_back(std::move(row));
@@ -142,6 +150,8 @@ grpc::Status AcommsService::QueueStats(grpc::ServerContext* context, const v1::Q
       entry->set_retried(stats.retried);
       entry->set_received(stats.received);
       entry->set_refused(stats.refused);
+      entry->set_delivered(stats.delivered);
+      entry->set_expired_remote(stats.expired_remote);
       *entry->mutable_policy() = to_proto(queue->policy());
     }
   });

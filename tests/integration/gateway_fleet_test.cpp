@@ -412,6 +412,20 @@ TEST_F(GatewayFleetTest, ShoreAndVehiclesExchangeEverythingOnceThroughABuoyKille
   }
   EXPECT_EQ(figures.delivered, figures.messages);
   EXPECT_GT(figures.traced, 0);
+  // QueueStats.delivered, as the API exports it, counts the end-to-end acks
+  // each origin logged (the shore and vehicle A are never killed: both
+  // count since the start).
+  for (int node : {kShore, kVehicleA}) {
+    grpc::ClientContext context;
+    v1::QueueStatsResponse stats;
+    ASSERT_TRUE(api(fleet_.socket(node))->QueueStats(&context, {}, &stats).ok());
+    uint64_t counted = 0;
+    for (const v1::QueueStatsEntry& q : stats.queues()) counted += q.delivered();
+    uint64_t logged = 0;
+    for (const v1::Event& e : node_events(fleet_.socket(node), {"delivered"})) logged += e.kind() == "delivered";
+    EXPECT_EQ(counted, logged) << names[node];
+    EXPECT_GT(counted, 0u) << names[node];
+  }
   // Vehicle A (never killed, always hearing both neighbours) sends what it
   // holds for others within kRelayWaitBoundS of taking custody.
   const HopDelay a_wait = figures.relay_wait.count(kVehicleA) ? figures.relay_wait.at(kVehicleA) : HopDelay{};

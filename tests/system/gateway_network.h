@@ -100,7 +100,8 @@ struct LinkSpec {
 struct GatewayNode {
   GatewayNode(int32_t id, const std::vector<std::string>& protos, const std::string& queue_text,
               const std::string& routing_text, const std::vector<LinkSpec>& specs,
-              core::SimulatedScheduler& scheduler, queue::MessageJournal& journal) {
+              core::SimulatedScheduler& scheduler, queue::MessageJournal& journal,
+              route::RouteJournal* route_journal = nullptr) {
     for (const std::string& proto : protos) codec.load(proto);
     v1::QueueConfig queue_config;
     EXPECT_TRUE(google::protobuf::TextFormat::ParseFromString(queue_text, &queue_config));
@@ -116,7 +117,7 @@ struct GatewayNode {
     }
     // The journal here completes at once, on the core: nothing to post.
     forwarder = std::make_unique<route::Forwarder>(routing, id, names, codec, *queues, scheduler.clock(), 1800,
-                                                   [](std::function<void()> work) { work(); });
+                                                   [](std::function<void()> work) { work(); }, route_journal);
     queues->set_routing(forwarder.get());
     queues->restore();
     choice = std::make_unique<link::LinkChoice>(

@@ -62,13 +62,13 @@ TEST(DeliveredIdentitiesTest, AnIdentityIsForgottenAfterItsTimeAndARememberMoves
 
 TEST(EndToEndAcksTest, ANoteIsFoundBySequenceMarkedAtItsHopAckAndTakenByItsReceipt) {
   EndToEndAcks acks(2);
-  acks.sent({70000, "net.Command", 3, 2, 10});  // sequence 70000 mod 2^16 = 4464
+  acks.sent({70000, "net.Command", 3, 2, 10, false, 1000});  // sequence 70000 mod 2^16 = 4464
   EXPECT_FALSE(acks.hop_acked(4464));           // another message of that sequence
   EXPECT_TRUE(acks.hop_acked(70000));
   ASSERT_NE(acks.find(4464), nullptr);
   EXPECT_TRUE(acks.find(4464)->hop_acked);
-  acks.sent({5, "net.Command", 3, 2, 20});
-  acks.sent({6, "net.Command", 3, 2, 30});  // full: the oldest note goes
+  acks.sent({5, "net.Command", 3, 2, 20, false, 1000});
+  acks.sent({6, "net.Command", 3, 2, 30, false, 1000});  // full: the oldest note goes
   EXPECT_EQ(acks.find(4464), nullptr);
   std::optional<RoutedSend> taken = acks.take(5);
   ASSERT_TRUE(taken);
