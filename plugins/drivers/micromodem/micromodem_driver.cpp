@@ -44,7 +44,7 @@ MicroModemDriver::MicroModemDriver(const v1::DriverConfig& config, core::Schedul
                 if (sequence_.running()) sequence_.report(tx, ok, error);
               },
               [this](const ModemTransmission& tx, Duration wait) { acks_.expect(tx, wait); }}),
-      reception_([this] { return now_seconds(); },
+      reception_(settings_.id, [this] { return now_seconds(); },
                  [this](ModemTransmission rx) { sequence_.on_received(rx); }),
       acks_(scheduler, settings_.id, [this](const ModemTransmission& ack) { sequence_.on_received(ack); }),
       extras_(scheduler, commands_, settings_.exchange,
