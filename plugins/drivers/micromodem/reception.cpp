@@ -93,14 +93,18 @@ void Reception::on_statistics(const nmea::ReceiveStatistics& statistics) {
   if (!record_ && statistics.mode == 2) {
     // Nothing was even detected: the packet a cycle-init announced, or our
     // poll asked for, never came.
-    if (std::optional<Expected> from = announcer()) tell_lost(*from, nullptr);
+    if (std::optional<Expected> from = announcer(true)) tell_lost(*from, nullptr);
     return;
   }
   close(&statistics);
 }
 
-std::optional<Reception::Expected> Reception::announcer() {
+std::optional<Reception::Expected> Reception::announcer(bool timeout) {
   std::optional<Announced> announced = std::exchange(announced_, std::nullopt);
+  // The modem surely times out our own poll (§8.2); whether it does for a
+  // cycle-init it only overheard the spec leaves open: a timeout is our
+  // poll's first. A damaged packet is the one just announced.
+  if (timeout && expected_) return expected_;
   if (announced && now_seconds_() - announced->heard_s <= kAnnouncementLife_s) return announced->packet;
   return expected_;
 }
@@ -146,7 +150,7 @@ void Reception::close(const nmea::ReceiveStatistics* statistics) {
       from = Expected{record.cycle->source, record.cycle->destination, record.cycle->rate};
       announced_.reset();
     } else {
-      from = announcer();
+      from = announcer(statistics->mode == 2);
     }
     if (!from) {
       if (damaged) ++counters_.unattributed;

@@ -121,8 +121,9 @@ class Reception {
   };
   void tell_lost(const Expected& from, const ::acomms::micromodem::ReceiveStatistics* figures);
   // Whose the packet closing now was, when it has no $CACYC of its own:
-  // the cycle-init just heard, else our poll.
-  std::optional<Expected> announcer();
+  // the cycle-init just heard, else our poll; for a timeout (mode 2) our
+  // poll first.
+  std::optional<Expected> announcer(bool timeout);
   // A closed record that was a cycle-init mini-packet from the water (not
   // a poll of us): the next packet is its sender's.
   void note_cycle_init(const Record& record, const ::acomms::micromodem::ReceiveStatistics& statistics);
