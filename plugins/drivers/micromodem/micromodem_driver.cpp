@@ -309,6 +309,11 @@ std::chrono::nanoseconds MicroModemDriver::ack_time(int32_t rate) const {
 link::DriverCounters MicroModemDriver::counters() const {
   link::DriverCounters counters;
   counters.bad_input = bad_input_.counts();
+  // Damaged packets the calibration cannot use: nothing named their sender
+  // (reception.h). Shown with the rest by `acommsctl link status`.
+  if (const uint64_t unattributed = reception_.counters().unattributed) {
+    counters.bad_input["damaged packet, sender unknown"] = unattributed;
+  }
   return counters;
 }
 

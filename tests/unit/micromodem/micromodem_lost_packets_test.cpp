@@ -96,6 +96,9 @@ TEST_F(MicroModemLostPacketsTest, ADamagedPacketNothingNamesIsCountedNotTold) {
   EXPECT_TRUE(b_->failed.empty());
   EXPECT_EQ(b_->driver->reception_counters().unattributed, 1u);
   EXPECT_EQ(b_->driver->reception_counters().lost_told, 0u);
+  const auto bad_input = b_->driver->counters().bad_input;
+  ASSERT_EQ(bad_input.count("damaged packet, sender unknown"), 1u) << "shown by acommsctl link status";
+  EXPECT_EQ(bad_input.at("damaged packet, sender unknown"), 1u);
 }
 
 }  // namespace
