@@ -17,6 +17,12 @@ VehicleEnvironment::VehicleEnvironment(Environment base, VehicleEnvironmentOptio
 void VehicleEnvironment::restore(KnownEnvironment stored) {
   std::lock_guard lock(mutex_);
   state_ = std::move(stored);
+  ++version_;
+}
+
+uint64_t VehicleEnvironment::version() const {
+  std::lock_guard lock(mutex_);
+  return version_;
 }
 
 KnownEnvironment VehicleEnvironment::snapshot() const {
@@ -81,6 +87,7 @@ KnownEnvironment VehicleEnvironment::update(const EnvironmentChange& change, con
   for (auto& instance : instances)
     if (instance.time_s() >= newest - options_.instance_window_s) *next.add_instances() = std::move(instance);
   state_ = next;
+  ++version_;
   if (persist) persist(state_);
   return next;
 }

@@ -13,6 +13,7 @@
 // Thread-safe (one mutex; runs read a copy).
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -64,12 +65,19 @@ class VehicleEnvironment {
   // column) and then changes nothing.
   KnownEnvironment update(const EnvironmentChange& change, const Persist& persist);
 
+  // Changes with every restore and update (never otherwise): a reader that
+  // keeps what it derived from resolve() (node/link_prediction.h) derives
+  // it again only when this moved. Read it before resolving: a change in
+  // between then costs one more resolve, never a stale result.
+  uint64_t version() const;
+
  private:
   ProfileInstance instance_from_cast(const Environment& base, const CastInput& cast) const;
 
   VehicleEnvironmentOptions options_;
   mutable std::mutex mutex_;
   KnownEnvironment state_;
+  uint64_t version_ = 0;
 };
 
 }  // namespace acomms::gram

@@ -298,6 +298,7 @@ void LinkController::record_packet(const v1::ModemTransmission& transmission, bo
   const v1::ReceptionFigures& f = transmission.figures();
   if (f.frames() > 0 && f.bad_frames() >= f.frames()) decoded = false;
   figures.set_decoded(decoded);
+  if (!decoded) ++lost_recorded_[transmission.src()];
   figures.clear_link_quality();  // the same figures again, as text: not worth a row each
   // Which link heard it (a node with several is calibrated link by link),
   // and the model's prediction when the driver has none (a real modem).

@@ -109,6 +109,14 @@ class LinkController {
   void on_driver_state(bool up);
 
   const LinkStats& stats() const { return stats_; }
+  // Packets from `src` recorded as heard and not decoded (packet events
+  // with decoded false: the driver's on_reception_failed, or every frame
+  // bad), since the start. A telemetry gap counts only the losses this
+  // link did not already record (node/unheard_packets.h). Core thread.
+  uint64_t lost_recorded(int32_t src) const {
+    auto it = lost_recorded_.find(src);
+    return it == lost_recorded_.end() ? 0 : it->second;
+  }
   // A driver-specific transmission (link/driver_specific.h): checked by the
   // driver now, then sent when the channel is this node's (the slot rule:
   // link/driver_specific_gate.h); `done` runs exactly once.
@@ -152,6 +160,7 @@ class LinkController {
   // frame index: an ACK names indices, the queues know frame ids.
   std::map<int32_t, std::vector<uint64_t>> awaiting_ack_;
   LinkStats stats_;
+  std::map<int32_t, uint64_t> lost_recorded_;  // by sender
   std::function<void(std::string_view, bool)> raw_tap_;
   DriverSpecificGate gate_;
   // A poll was answered with a blank frame so that a waiting extra can

@@ -23,6 +23,7 @@
 #include "node/gram_setup.h"
 #include "node/node_link.h"
 #include "node/received_message_router.h"
+#include "node/unheard_packets.h"
 #include "dccl/codec.h"
 #include "queue/durable_receipts.h"
 #include "queue/queue_manager.h"
@@ -117,6 +118,9 @@ class Daemon {
   telemetry::NodeSettings telemetry_settings_;
   core::NodePosition node_position_;
   ModemPositions modem_positions_;  // the others', from their telemetry (core thread)
+  // Packets only a telemetry gap tells of, as packet events (before
+  // telemetry_, which calls it).
+  std::unique_ptr<UnheardPackets> unheard_;
   std::unique_ptr<telemetry::TelemetryNode> telemetry_;
   std::unique_ptr<telemetry::TrackReader> track_;
   // Who may call what on the API (config auth); outlives both services.

@@ -80,34 +80,59 @@ double LinkPrediction::model_depth(double z_up) const {
   return std::clamp(-z_up, top_m_ + kBoundaryClearance, bottom_m_ - kBoundaryClearance);
 }
 
-std::optional<gram::Environment> LinkPrediction::grid_environment(double own_depth_m) {
-  auto problem = [this](const std::string& why) -> std::optional<gram::Environment> {
+const LinkPrediction::Water& LinkPrediction::water() {
+  // The version first: a change between the two costs one more resolve
+  // later, never a stale water kept under a newer version.
+  const uint64_t version = sources_.environment->version();
+  if (water_ && water_->version == version) return *water_;
+  Water w;
+  w.version = version;
+  try {
+    std::vector<gram::Environment> resolved = sources_.environment->resolve(gram::Environment(), {}, false);
+    if (resolved.empty()) {
+      w.problem = "GRAM has no environment";
+    } else {
+      w.env = std::move(resolved.front());
+    }
+  } catch (const std::exception& e) {
+    w.problem = std::string("GRAM's environment: ") + e.what();
+  }
+  if (w.problem.empty() && w.env.sound_speed_size() < 2) {
+    w.problem = "GRAM's environment has no sound-speed profile (gram.base)";
+  }
+  if (w.problem.empty()) {
+    w.env.clear_source_depth_m();
+    w.env.set_irregular_receivers(false);
+    w.env.clear_receiver_depth_m();
+    w.env.clear_receiver_range_m();
+    w.bytes = w.env.SerializeAsString();
+    w.top_m = w.env.sound_speed(0).depth_m();
+    w.bottom_m = w.env.sound_speed(w.env.sound_speed_size() - 1).depth_m();
+    if (w.bottom_m - w.top_m <= 2 * kBoundaryClearance) w.problem = "GRAM's environment: the water is too shallow";
+  }
+  ++counters_.water_resolved;
+  water_ = std::move(w);
+  return *water_;
+}
+
+std::optional<LinkPrediction::GridRequest> LinkPrediction::grid_environment(double own_depth_m) {
+  auto problem = [this](const std::string& why) -> std::optional<GridRequest> {
     if (why != last_problem_) spdlog::warn("link prediction: no prediction: {}", why);
     last_problem_ = why;
     return std::nullopt;
   };
   if (sources_.environment == nullptr || sources_.pool == nullptr) return problem("GRAM has no model pool");
-  gram::Environment env;
-  try {
-    std::vector<gram::Environment> resolved = sources_.environment->resolve(gram::Environment(), {}, false);
-    if (resolved.empty()) return problem("GRAM has no environment");
-    env = std::move(resolved.front());
-  } catch (const std::exception& e) {
-    return problem(std::string("GRAM's environment: ") + e.what());
-  }
-  if (env.sound_speed_size() < 2) return problem("GRAM's environment has no sound-speed profile (gram.base)");
-  env.clear_source_depth_m();
-  env.set_irregular_receivers(false);
-  env.clear_receiver_depth_m();
-  env.clear_receiver_range_m();
-  const std::string water = env.SerializeAsString();
-  top_m_ = env.sound_speed(0).depth_m();
-  bottom_m_ = env.sound_speed(env.sound_speed_size() - 1).depth_m();
-  if (bottom_m_ - top_m_ <= 2 * kBoundaryClearance) return problem("GRAM's environment: the water is too shallow");
+  const Water& w = water();
+  if (!w.problem.empty()) return problem(w.problem);
+  top_m_ = w.top_m;
+  bottom_m_ = w.bottom_m;
   const double depth = std::clamp(own_depth_m, top_m_ + kBoundaryClearance, bottom_m_ - kBoundaryClearance);
-  const bool same_water = grid_ && water == grid_water_;
+  const bool same_water = grid_ && w.bytes == grid_water_;
   if (same_water && std::abs(depth - grid_depth_m_) <= depth_tolerance_m_) return std::nullopt;  // the grid holds
-  if (water == failed_water_ && std::abs(depth - failed_depth_m_) <= depth_tolerance_m_) return std::nullopt;
+  if (w.bytes == failed_water_ && std::abs(depth - failed_depth_m_) <= depth_tolerance_m_) return std::nullopt;
+  // A new grid: only now is the environment copied and filled in.
+  GridRequest request{w.env, w.bytes};
+  gram::Environment& env = request.env;
   const double step = config_.depth_step_m() > 0 ? config_.depth_step_m() : gram::default_depth_step_m(bottom_m_ - top_m_);
   const auto nz = static_cast<int>(std::ceil((bottom_m_ - top_m_) / step - 1e-9));
   if (nz > 2000) return problem("depth_step_m is too fine for this water: more than 2000 grid depths");
@@ -118,22 +143,22 @@ std::optional<gram::Environment> LinkPrediction::grid_environment(double own_dep
   env.set_box_depth_m(std::max(env.box_depth_m(), bottom_m_ + 1));
   env.set_source_depth_m(depth);
   if (auto invalid = gram::validate_environment(env)) {
-    failed_water_ = water;
+    failed_water_ = w.bytes;
     failed_depth_m_ = depth;
     return problem("GRAM's environment: " + *invalid);
   }
-  return env;
+  return request;
 }
 
 void LinkPrediction::follow(double own_depth_m) {
   if (pending_) return;  // one run at a time; the next packet checks again
-  std::optional<gram::Environment> env = grid_environment(own_depth_m);
-  if (!env) return;
+  std::optional<GridRequest> grid = grid_environment(own_depth_m);
+  if (!grid) return;
   pending_ = true;
-  gram::Environment water = *env;
-  water.clear_source_depth_m();
-  water.clear_receiver_depth_m();
-  water.clear_receiver_range_m();
+  std::optional<gram::Environment> env(std::move(grid->env));
+  // The key of the grid (and of a failure) is the water as resolved, the
+  // one grid_environment compares: not the request's, whose box was widened.
+  std::string water = std::move(grid->water);
   const double depth = env->source_depth_m();
   double noise_db = config_.noise_level_db();
   try {
@@ -149,11 +174,12 @@ void LinkPrediction::follow(double own_depth_m) {
     }
   } catch (const std::exception& e) {
     pending_ = false;
-    failed_water_ = water.SerializeAsString();
+    failed_water_ = water;
     failed_depth_m_ = depth;
     spdlog::warn("link prediction: no noise level: {}", e.what());
     return;
   }
+  ++counters_.grid_requests;
   gram::ModelRequest request;
   request.kind = gram::ModelKind::kTransmissionLoss;
   request.environments = {std::move(*env)};
@@ -161,7 +187,7 @@ void LinkPrediction::follow(double own_depth_m) {
   auto to_core = sources_.to_core;
   sources_.pool->submit(
       std::move(request), "",
-      [self, to_core, depth, noise_db, water = water.SerializeAsString()](gram::ModelOutcome outcome) {
+      [self, to_core, depth, noise_db, water = std::move(water)](gram::ModelOutcome outcome) {
         to_core([self, depth, noise_db, water, outcome = std::move(outcome)] {
           auto p = self.lock();
           if (!p) return;

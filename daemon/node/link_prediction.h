@@ -75,15 +75,34 @@ class LinkPrediction : public std::enable_shared_from_this<LinkPrediction> {
     uint64_t no_model = 0;        // no grid yet, no environment, or the model failed
     uint64_t out_of_range = 0;    // beyond max_range_m, or in a shadow
     uint64_t grids = 0;           // grids received
+    uint64_t grid_requests = 0;   // model runs asked for
+    uint64_t water_resolved = 0;  // GRAM's environment resolved (once per its version)
   };
   const Counters& counters() const { return counters_; }
 
  private:
   LinkPrediction() = default;
   std::optional<core::NodeFix> position_of(int32_t modem, bool own) const;
-  // The grid's environment for this node at `depth_m` (source there,
-  // receivers set), or nullopt with the reason logged once.
-  std::optional<gram::Environment> grid_environment(double own_depth_m);
+  // GRAM's environment as the grid takes it (source and receivers
+  // cleared), resolved and serialized once per VehicleEnvironment version,
+  // not for every packet heard (the hot path: predict runs per packet on
+  // the core thread; resolving copies the environment under GRAM's lock and
+  // serializing it costs more than the rest of predict together).
+  struct Water {
+    uint64_t version = 0;
+    gram::Environment env;
+    std::string bytes;    // env serialized: the key of a grid and of a failure
+    double top_m = 0, bottom_m = 0;
+    std::string problem;  // not empty: this version gives no grid
+  };
+  const Water& water();
+  struct GridRequest {
+    gram::Environment env;  // source at this node's depth, receivers set
+    std::string water;      // Water::bytes it came from
+  };
+  // The grid's environment for this node at `depth_m`, when a new grid is
+  // due; else nullopt (the reason logged once when there is a problem).
+  std::optional<GridRequest> grid_environment(double own_depth_m);
   void follow(double own_depth_m);
   double model_depth(double z_up) const;
 
@@ -96,7 +115,8 @@ class LinkPrediction : public std::enable_shared_from_this<LinkPrediction> {
   // The grid in use and what it was computed for.
   std::shared_ptr<const gram::TransmissionLoss> grid_;
   double grid_depth_m_ = 0, grid_noise_db_ = 0, top_m_ = 0, bottom_m_ = 0;
-  std::string grid_water_;      // the environment it came from (serialized, source and receivers cleared)
+  std::optional<Water> water_;  // the environment last resolved
+  std::string grid_water_;      // the environment it came from (Water::bytes)
   bool pending_ = false;
   std::string failed_water_;    // the model or the environment refused this one: not asked again
   double failed_depth_m_ = -1;

@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "core/core_thread.h"
 #include "mac/mac_factory.h"
 
 namespace acomms::node {
 
-NodeLink::NodeLink(const v1::LinkConfig& config, int index, LinkParts& parts) : config_(config) {
+NodeLink::NodeLink(const v1::LinkConfig& config, int index, LinkParts& parts)
+    : config_(config), queues_(parts.queues), own_id_(parts.own_id) {
   // Errors name the link when there are several; one link's read as before.
   const std::string where = parts.link_count > 1 ? "link \"" + config_.name() + "\": " : "";
   const std::string& name = config_.driver().name();
@@ -63,7 +65,14 @@ NodeLink::NodeLink(const v1::LinkConfig& config, int index, LinkParts& parts) : 
       p->predict(heard, figures);
     };
   }
-  controller_ = std::make_unique<link::LinkController>(parts.own_id, parts.queues, *mac_, *driver_, parts.deliver,
+  // Who this link heard, at which rate: where a telemetry gap's packets
+  // were lost (record_unheard).
+  auto deliver = [this, deliver = parts.deliver, &clock = parts.scheduler.clock()](
+                     queue::ReceivedMessage message, const v1::ModemTransmission& from) {
+    heard_[from.src()] = Heard{clock.now_seconds(), from.rate()};
+    deliver(std::move(message), from);
+  };
+  controller_ = std::make_unique<link::LinkController>(parts.own_id, parts.queues, *mac_, *driver_, std::move(deliver),
                                                        link_options);
   // A failed driver's link carries nothing until it runs again: what waited
   // for its ACK may go on another link (link_choice.h).
@@ -79,6 +88,30 @@ NodeLink::NodeLink(const v1::LinkConfig& config, int index, LinkParts& parts) : 
     controller_->set_raw_tap([log = raw_log_.get()](std::string_view raw, bool outgoing) { log->record(raw, outgoing); });
   }
   if (config_.has_enable_above_depth_m()) depth_.emplace(config_.enable_above_depth_m());
+}
+
+std::optional<NodeLink::Heard> NodeLink::last_heard(int32_t src) const {
+  auto it = heard_.find(src);
+  if (it == heard_.end()) return std::nullopt;
+  return it->second;
+}
+
+void NodeLink::record_unheard(int32_t src) {
+  ACOMMS_ASSERT_CORE_THREAD();
+  v1::LinkFigures figures;
+  figures.set_transmission_src(src);
+  figures.set_decoded(false);
+  figures.set_link(config_.name());
+  if (std::optional<Heard> heard = last_heard(src)) figures.set_rate(heard->rate);
+  if (prediction_) {
+    v1::ModemTransmission unheard;
+    unheard.set_type(v1::ModemTransmission::DATA);
+    unheard.set_src(src);
+    unheard.set_dest(own_id_);
+    unheard.set_rate(figures.rate());
+    prediction_->predict(unheard, figures);
+  }
+  queues_.record_packet(src, own_id_, figures.SerializeAsString());
 }
 
 NodeLink::~NodeLink() {

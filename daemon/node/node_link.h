@@ -14,6 +14,7 @@
 // destroyed in reverse; the controller is stopped on the core thread
 // before destruction (the Daemon does it). Core thread only once started.
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -78,6 +79,19 @@ class NodeLink {
   // Null unless driver.micromodem.prediction is set.
   const LinkPrediction* prediction() const { return prediction_.get(); }
 
+  // When this link last delivered a message from `src` (host seconds) and
+  // at which rate; nullopt if never. Core thread.
+  struct Heard {
+    double time_s = 0;
+    int32_t rate = 0;
+  };
+  std::optional<Heard> last_heard(int32_t src) const;
+  // A packet from `src` sent on this link and not received, known only from
+  // a telemetry gap (node/unheard_packets.h): a packet event, not decoded,
+  // at the rate last heard from it, without measured figures, with the
+  // model's prediction when this link has one. Core thread.
+  void record_unheard(int32_t src);
+
   // A navigation fix's depth (m, down): enables or disables the link when
   // it crosses enable_above_depth_m (link/depth_switch.h). Core thread.
   void on_depth(double depth_m);
@@ -90,6 +104,9 @@ class NodeLink {
   std::shared_ptr<LinkPrediction> prediction_;  // a Micro-Modem's, when configured
   std::unique_ptr<link::LinkController> controller_;
   std::optional<link::DepthSwitch> depth_;
+  queue::QueueManager& queues_;
+  int32_t own_id_;
+  std::map<int32_t, Heard> heard_;  // by sender, from what this link delivered
 };
 
 }  // namespace acomms::node

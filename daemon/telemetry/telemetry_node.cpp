@@ -86,7 +86,9 @@ void TelemetryNode::restore(const StoredStreams& stored, queue::EventLogReader& 
         last_event_seq_ = stored_message.seq;
         continue;
       }
+      replaying_ = true;
       on_received(message);
+      replaying_ = false;
       last_event_seq_ = std::max(last_event_seq_, stored_message.seq);
       ++replayed;
     }
@@ -228,7 +230,11 @@ void TelemetryNode::on_received(const queue::ReceivedMessage& message) {
     return;
   }
   wire.src = message.src;
+  StreamReceiver& receiver = receiver_for(wire.src);
+  const uint64_t fresh_starts = receiver.counters().fresh_starts;
   consume(wire, message.seq, message.time);
+  const uint32_t missing = gaps_.observe(wire.src, wire.sequence, receiver.counters().fresh_starts != fresh_starts);
+  if (on_sequence_) on_sequence_(wire.src, missing, replaying_);
 }
 
 void TelemetryNode::consume(const WireMessage& message, int64_t event_seq, double now) {

@@ -46,6 +46,7 @@
 #include "store/group_commit_writer.h"
 #include "telemetry/node_settings.h"
 #include "telemetry/sampler.h"
+#include "telemetry/sequence_gaps.h"
 #include "telemetry/stream_receiver.h"
 #include "telemetry/stream_sender.h"
 
@@ -116,6 +117,15 @@ class TelemetryNode {
   // A message the queue received (any type: others are ignored).
   void on_received(const queue::ReceivedMessage& message);
 
+  // Each stream message received from `src` (to this node) after it was
+  // consumed: `missing` messages of that stream before it never arrived
+  // (telemetry/sequence_gaps.h; 0 for most); `replayed` when it is
+  // consumed again from the event log at start (its gap, if any, was told
+  // when it first came: not to be counted again). Core thread.
+  using OnSequence = std::function<void(int32_t src, uint32_t missing, bool replayed)>;
+  void on_sequence(OnSequence on_sequence) { on_sequence_ = std::move(on_sequence); }
+  const SequenceGapCounters& sequence_gaps() const { return gaps_.counters(); }
+
   const NodeSettings& settings() const { return settings_; }
   const NodeCounters& counters() const { return counters_; }
 
@@ -142,6 +152,9 @@ class TelemetryNode {
   int64_t last_event_seq_ = 0;
   std::optional<double> last_fix_time_s_;
   NodeCounters counters_;
+  SequenceGaps gaps_;
+  OnSequence on_sequence_;
+  bool replaying_ = false;  // restore() consumes stored messages again
 };
 
 }  // namespace acomms::telemetry

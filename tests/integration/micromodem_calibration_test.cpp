@@ -116,5 +116,63 @@ TEST(MicroModemCalibration, PacketEventsCarryThePredictionAndCalibrateRecoversTh
   }
 }
 
+// The same network, the fake's modems losing 30% of the frames they hear
+// ($CAMSG,BAD_CRC in place of the frame's $CARXD, $CACST mode 1). At rate 0
+// a packet is one frame and carries no header: the driver names its sender
+// from the cycle-init heard just before it, so each damaged packet becomes
+// a packet event, not decoded, with the $CACST's figures and the model's
+// prediction; calibrate counts them among the packets of the reception
+// curve's data (its rate line).
+TEST(MicroModemCalibration, DamagedPacketsAreLostPacketEventsWithThePredictionAndCalibrateCountsThem) {
+  MicroModemNetwork net("mm-calibration-lost", {{1, "1,mm2,300,0,0"}, {2, "2,mm2,0,0,0"}}, kTimeScale,
+                        {"--frame-errors", "0.3", "--seed", "5"});
+  ASSERT_TRUE(net.ok()) << net.fake_output();
+  const std::string mac = "name: \"fixed\" slot { src: 1 rate: 0 seconds: 3 } slot { src: 2 rate: 0 seconds: 3 }";
+  net.write_config(1, mac, kPrediction, kGram);
+  net.write_config(2, mac);
+  for (int id : {1, 2}) ASSERT_TRUE(net.start(id)) << net.daemon_log(id);
+  for (int seq = 1; seq <= 60; ++seq) ASSERT_TRUE(net.submit_command(2, 1, seq).ok());
+
+  auto count = [](const v1::EventsResponse& events, bool decoded) {
+    int n = 0;
+    for (const auto& e : events.events()) {
+      n += e.link().has_predicted_snr_db() && e.link().decoded() == decoded ? 1 : 0;
+    }
+    return n;
+  };
+  v1::EventsResponse events;
+  std::string listed;
+  const bool enough = wait_until(
+      [&] {
+        events = packet_events(net, 1, "events", &listed);
+        return count(events, false) >= 3 && count(events, true) >= 5;
+      },
+      150s, 1s);
+  ASSERT_TRUE(enough) << count(events, false) << " lost and " << count(events, true) << " decoded with a prediction\n"
+                      << listed << "\nvehicle:\n" << net.daemon_log(1);
+  for (const auto& e : events.events()) {
+    if (e.link().decoded() || !e.link().has_predicted_snr_db()) continue;
+    EXPECT_EQ(e.link().transmission_src(), 2) << "named by its cycle-init";
+    EXPECT_EQ(e.link().rate(), 0);
+    EXPECT_EQ(e.link().bad_frames(), 1u);
+    EXPECT_NEAR(e.link().snr_in_db(), 50.5, 0.05) << "a damaged packet's $CACST figures are kept";
+    EXPECT_NEAR(e.link().predicted_tl_db(), 20 * std::log10(300.0), 1.0);
+  }
+
+  RunResult calibrated = run(ACOMMSCTL_BINARY, {"--socket", net.socket(1), "link", "calibrate"},
+                             (net.dir() / "calibrate").string());
+  std::smatch found;
+  ASSERT_TRUE(std::regex_search(calibrated.out, found, std::regex(R"(rate 0: ([0-9]+) packets, ([0-9]+) decoded)")))
+      << calibrated.out << calibrated.err;
+  const int packets = std::stoi(found[1]), decoded = std::stoi(found[2]);
+  EXPECT_GE(packets - decoded, 3) << "the lost packets reach the reception curve's data\n" << calibrated.out;
+  std::printf("%s", calibrated.out.c_str());
+
+  for (int id : {1, 2}) {
+    net.daemon(id).signal(SIGTERM);
+    EXPECT_EQ(net.daemon(id).wait(15s), std::optional<int>(0)) << "node " << id << ":\n" << net.daemon_log(id);
+  }
+}
+
 }  // namespace
 }  // namespace acomms::testing

@@ -28,7 +28,8 @@ std::vector<std::string> answers(const std::string& output) {
 
 }  // namespace
 
-MicroModemNetwork::MicroModemNetwork(const std::string& name, std::vector<Modem> modems, double time_scale)
+MicroModemNetwork::MicroModemNetwork(const std::string& name, std::vector<Modem> modems, double time_scale,
+                                     std::vector<std::string> fake_args)
     : dir_(fs::path("/tmp") / ("acomms-" + name + "-" + std::to_string(::getpid()))),
       modems_(std::move(modems)),
       time_scale_(time_scale) {
@@ -45,6 +46,7 @@ MicroModemNetwork::MicroModemNetwork(const std::string& name, std::vector<Modem>
     args.push_back("--modem");
     args.push_back(modem.spec);
   }
+  args.insert(args.end(), fake_args.begin(), fake_args.end());
   fake_ = std::make_unique<ChildProcess>(FAKE_MICROMODEM_BINARY, args, (dir_ / "fake").string(),
                                          std::map<std::string, std::string>{}, fifo);
   ok_ = wait_until(

@@ -31,7 +31,9 @@ class MicroModemNetwork {
   };
   // Starts the fake (not the daemons) in a fresh directory under /tmp named
   // after `name`. Check ok() (and fake_output() when it is not).
-  MicroModemNetwork(const std::string& name, std::vector<Modem> modems, double time_scale);
+  // `fake_args`: more options for the fake (e.g. {"--frame-errors", "0.3"}).
+  MicroModemNetwork(const std::string& name, std::vector<Modem> modems, double time_scale,
+                    std::vector<std::string> fake_args = {});
   ~MicroModemNetwork();  // SIGTERMs what runs (expecting exit 0 from daemons) and removes the directory
 
   bool ok() const { return ok_; }

@@ -44,7 +44,7 @@ MicroModemDriver::MicroModemDriver(const v1::DriverConfig& config, core::Schedul
                 if (sequence_.running()) sequence_.report(tx, ok, error);
               },
               [this](const ModemTransmission& tx, Duration wait) { acks_.expect(tx, wait); }}),
-      reception_([this] { return now_seconds(); },
+      reception_(settings_.id, [this] { return now_seconds(); },
                  [this](ModemTransmission rx) { sequence_.on_received(rx); }),
       acks_(scheduler, settings_.id, [this](const ModemTransmission& ack) { sequence_.on_received(ack); }),
       extras_(scheduler, commands_, settings_.exchange,
@@ -309,6 +309,11 @@ std::chrono::nanoseconds MicroModemDriver::ack_time(int32_t rate) const {
 link::DriverCounters MicroModemDriver::counters() const {
   link::DriverCounters counters;
   counters.bad_input = bad_input_.counts();
+  // Damaged packets the calibration cannot use: nothing named their sender
+  // (reception.h). Shown with the rest by `acommsctl link status`.
+  if (const uint64_t unattributed = reception_.counters().unattributed) {
+    counters.bad_input["damaged packet, sender unknown"] = unattributed;
+  }
   return counters;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <utility>
 
 #include "core/core_thread.h"
 
@@ -42,8 +43,8 @@ v1::ReceptionFigures figures_of(const nmea::ReceiveStatistics& s) {
   return f;
 }
 
-Reception::Reception(std::function<double()> now_seconds, Deliver deliver)
-    : now_seconds_(std::move(now_seconds)), deliver_(std::move(deliver)) {}
+Reception::Reception(int32_t own_id, std::function<double()> now_seconds, Deliver deliver)
+    : own_id_(own_id), now_seconds_(std::move(now_seconds)), deliver_(std::move(deliver)) {}
 
 Reception::Record& Reception::open() {
   // emplace(Record()), not emplace(): clang decides Record (nested, with a
@@ -90,11 +91,30 @@ void Reception::on_statistics(const nmea::ReceiveStatistics& statistics) {
   ACOMMS_ASSERT_CORE_THREAD();
   ++counters_.packets;
   if (!record_ && statistics.mode == 2) {
-    // Nothing was even detected: the packet our poll asked for never came.
-    if (expected_) tell_lost(*expected_, nullptr);
+    // Nothing was even detected: the packet a cycle-init announced, or our
+    // poll asked for, never came.
+    if (std::optional<Expected> from = announcer(true)) tell_lost(*from, nullptr);
     return;
   }
   close(&statistics);
+}
+
+std::optional<Reception::Expected> Reception::announcer(bool timeout) {
+  std::optional<Announced> announced = std::exchange(announced_, std::nullopt);
+  // The modem surely times out our own poll (§8.2); whether it does for a
+  // cycle-init it only overheard the spec leaves open: a timeout is our
+  // poll's first. A damaged packet is the one just announced.
+  if (timeout && expected_) return expected_;
+  if (announced && now_seconds_() - announced->heard_s <= kAnnouncementLife_s) return announced->packet;
+  return expected_;
+}
+
+void Reception::note_cycle_init(const Record& record, const nmea::ReceiveStatistics& statistics) {
+  const bool mini = statistics.packet_type == nmea::kPacketFskMini || statistics.packet_type == nmea::kPacketPskMini;
+  if (!record.cycle || !mini || statistics.mode != 0) return;
+  // ADR1 is the data's source (§5.1): ours is a poll of us, we send.
+  if (record.cycle->source == own_id_) return;
+  announced_ = Announced{{record.cycle->source, record.cycle->destination, record.cycle->rate}, now_seconds_()};
 }
 
 void Reception::tell_lost(const Expected& from, const nmea::ReceiveStatistics* figures) {
@@ -116,20 +136,30 @@ void Reception::close(const nmea::ReceiveStatistics* statistics) {
   Record record = std::move(*record_);
   record_.reset();
   if (record.frames.empty()) {
-    // A cycle-init, an ACK, a blank or a damaged packet; only the damaged
-    // one, its sender known, is worth telling (heard and lost).
-    if (record.bad_frames > 0 && record.cycle && statistics != nullptr && statistics->mode != 2) {
-      tell_lost({record.cycle->source, record.cycle->destination, statistics->rate}, statistics);
-    } else if (statistics != nullptr && statistics->mode == 2) {
-      // Announced (a cycle-init heard, or our poll) and never came.
-      if (record.cycle) {
-        tell_lost({record.cycle->source, record.cycle->destination, record.cycle->rate}, nullptr);
-      } else if (expected_) {
-        tell_lost(*expected_, nullptr);
-      }
+    // A cycle-init, an ACK, a blank, a damaged packet or a timeout; only
+    // the damaged one and the one that never came are worth telling.
+    if (statistics == nullptr) return;
+    const bool damaged = statistics->mode == 1 || (record.bad_frames > 0 && statistics->mode != 2);
+    if (!damaged && statistics->mode != 2) return note_cycle_init(record, *statistics);
+    // A damaged mini-packet (a cycle-init or an ACK, BAD_CRC value 2) is no
+    // data packet lost; the packet a cycle-init announced is still awaited.
+    const bool mini = statistics->packet_type == nmea::kPacketFskMini || statistics->packet_type == nmea::kPacketPskMini;
+    if (damaged && mini) return;
+    std::optional<Expected> from;
+    if (record.cycle) {
+      from = Expected{record.cycle->source, record.cycle->destination, record.cycle->rate};
+      announced_.reset();
+    } else {
+      from = announcer(statistics->mode == 2);
     }
+    if (!from) {
+      if (damaged) ++counters_.unattributed;
+      return;
+    }
+    tell_lost(*from, damaged ? statistics : nullptr);
     return;
   }
+  announced_.reset();  // the packet it announced (or another) came
   if (expected_ && expected_->src == record.first_frame->source) expected_.reset();  // the answer came
   v1::ModemTransmission rx;
   rx.set_type(v1::ModemTransmission::DATA);

@@ -43,6 +43,9 @@ struct FakeModemConfig {
   Position position;
   ModemTiming timing;
   double frame_error_probability = 0;  // each received frame: $CAMSG,BAD_CRC instead of $CARXD
+  // Each received PSK data packet: its header does not decode (§8.6): no
+  // $CACYC, no frame, a $CACST with mode 1 and PSK error 1.
+  double header_error_probability = 0;
   uint32_t seed = 1;
   // MM1 firmware bug (§10 quirk 8): acknowledgements between two other
   // modems are reported as $CAACK with DEST = this modem.
@@ -81,6 +84,7 @@ class FakeMicroModem final : public WaterListener {
   void report_error(const std::string& module, const std::string& number, const std::string& message);
 
   void move_to(Position position) { config_.position = position; }
+  void set_frame_error_probability(double p) { config_.frame_error_probability = p; }
   Position position() const override { return config_.position; }
   void on_arrival(const AcousticPacket& packet, Duration air, double range_m) override;
 
@@ -134,7 +138,7 @@ class FakeMicroModem final : public WaterListener {
   void receive_cycle_init(const AcousticPacket& packet);
   void receive_data(const AcousticPacket& packet, bool damaged);
   void receive_ack(const AcousticPacket& packet);
-  void receive_statistics(const AcousticPacket& packet, int mode, int bad_frames);
+  void receive_statistics(const AcousticPacket& packet, int mode, int bad_frames, bool header_lost = false);
   void send_ack(const AcousticPacket& data, std::vector<int> frames);
   bool transmitting() const;
 

@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> modem_specs;
   std::string transport = "pty";
   uint16_t tcp_base_port = 0;
-  double time_scale = 1, sound_speed = 1500, loss = 0, frame_errors = 0;
+  double time_scale = 1, sound_speed = 1500, loss = 0, frame_errors = 0, header_errors = 0;
   uint32_t seed = 1;
   uint16_t bus_port = 0;
   std::vector<uint16_t> bus_peers;
@@ -109,6 +109,9 @@ int main(int argc, char** argv) {
   app.add_option("--sound-speed", sound_speed, "m/s")->check(CLI::Range(100.0, 5000.0));
   app.add_option("--loss", loss, "probability that a receiver misses a packet")->check(CLI::Range(0.0, 1.0));
   app.add_option("--frame-errors", frame_errors, "probability of $CAMSG,BAD_CRC per frame")->check(CLI::Range(0.0, 1.0));
+  app.add_option("--header-errors", header_errors,
+                 "probability that a PSK data packet's header does not decode ($CACST mode 1, PSK error 1)")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--seed", seed, "random seed (losses, frame errors, noise)");
   app.add_option("--bus-port", bus_port, "UDP port on 127.0.0.1 joining other processes' water");
   app.add_option("--bus-peer", bus_peers, "another process's --bus-port; repeatable");
@@ -135,6 +138,7 @@ int main(int argc, char** argv) {
     for (size_t i = 0; i < modem_specs.size(); ++i) {
       FakeModemConfig config = parse_modem(modem_specs[i]);
       config.frame_error_probability = frame_errors;
+      config.header_error_probability = header_errors;
       config.seed = seed + static_cast<uint32_t>(i);
       if (by_address.contains(config.address)) {
         throw CLI::ValidationError("--modem", "address " + std::to_string(config.address) + " is used twice");

@@ -76,6 +76,12 @@ void FakeMicroModem::receive_cycle_init(const AcousticPacket& p) {
 }
 
 void FakeMicroModem::receive_data(const AcousticPacket& p, bool damaged) {
+  std::bernoulli_distribution header_error(config_.header_error_probability);
+  if (p.is_psk(nvram_.flag("MOD")) && config_.header_error_probability > 0 && header_error(random_)) {
+    // An undecodable PSK header (§8.6): nothing but the statistics, mode 1,
+    // PSK error 1; the modem learned neither the cycle nor the frames.
+    return receive_statistics(p, 1, 0, true);
+  }
   if (p.rate > 0) {
     // PSK packets carry the cycle in their header: printed again (§5.1 c).
     emit(to_sentence(Cycle{0, p.source, p.destination, p.rate, p.ack, p.frames_wanted}, Talker::kModem));
@@ -125,7 +131,7 @@ void FakeMicroModem::receive_ack(const AcousticPacket& p) {
   receive_statistics(p, 0, 0);
 }
 
-void FakeMicroModem::receive_statistics(const AcousticPacket& p, int mode, int bad_frames) {
+void FakeMicroModem::receive_statistics(const AcousticPacket& p, int mode, int bad_frames, bool header_lost) {
   if (!nvram_.flag("CST")) return;
   bool mm1 = config_.generation == Generation::kMM1;
   bool psk = p.is_psk(nvram_.flag("MOD"));
@@ -161,6 +167,16 @@ void FakeMicroModem::receive_statistics(const AcousticPacket& p, int mode, int b
     s.noise = 85;
     s.carrier = nvram_.integer("FC0");
     s.bandwidth = nvram_.integer("BW0");
+    if (header_lost) {
+      // What the header would have said is unknown: the fake writes -1 for
+      // source and destination (the spec does not say what a modem writes)
+      // and no frames.
+      s.source = -1;
+      s.destination = -1;
+      s.psk_error = 1;
+      s.frames = 0;
+      s.bad_frames = 0;
+    }
   }
   emit(to_sentence(s));
 }

@@ -140,6 +140,47 @@ TEST_F(LinkPredictionTest, WithoutAnEnvironmentNothingIsPredicted) {
   EXPECT_EQ(p->counters().grids, 0u);
 }
 
+// The hot path: predict runs for every packet heard, on the core thread.
+// GRAM's environment is resolved (and serialized, the grid's key) once per
+// VehicleEnvironment version, not per packet, and the predictions are the
+// same with the cached water as with a fresh one: a version that moved
+// without changing the water resolves it again, keeps the grid and gives
+// the same figures to the last bit; many packets ask for no new model run.
+TEST_F(LinkPredictionTest, TheEnvironmentIsResolvedOncePerVersionAndThePredictionsAreUnchanged) {
+  auto p = make(kFixed);
+  predict(*p);
+  ASSERT_TRUE(run_until([&] { return p->counters().grids == 1; }));
+  const v1::LinkFigures first = predict(*p);
+  ASSERT_TRUE(first.has_predicted_snr_db());
+  for (int i = 0; i < 100; ++i) {
+    const v1::LinkFigures again = predict(*p);
+    ASSERT_EQ(again.predicted_tl_db(), first.predicted_tl_db());
+    ASSERT_EQ(again.predicted_snr_db(), first.predicted_snr_db());
+  }
+  EXPECT_EQ(p->counters().water_resolved, 1u) << "one resolve for 102 packets of one environment version";
+  EXPECT_EQ(p->counters().grid_requests, 1u) << "the grid holds: no model run asked for again";
+  // A new version with the same water (an empty change): resolved again,
+  // the same grid kept, the same prediction.
+  environment_->update(gram::EnvironmentChange{}, nullptr);
+  const v1::LinkFigures after = predict(*p);
+  EXPECT_EQ(p->counters().water_resolved, 2u);
+  EXPECT_EQ(after.predicted_tl_db(), first.predicted_tl_db());
+  EXPECT_EQ(after.predicted_snr_db(), first.predicted_snr_db());
+  EXPECT_EQ(p->counters().grid_requests, 1u) << "the same water: the grid holds, no model run";
+  // Other water (a deeper bottom): a new grid, for the new version only.
+  gram::EnvironmentChange deeper;
+  deeper.base = environment_->snapshot().base();
+  deeper.base.mutable_sound_speed(1)->set_depth_m(200);
+  environment_->update(deeper, nullptr);
+  predict(*p);
+  ASSERT_TRUE(run_until([&] { return p->counters().grids == 2; }));
+  EXPECT_EQ(p->counters().water_resolved, 3u);
+  EXPECT_EQ(p->counters().grid_requests, 2u);
+  const v1::LinkFigures deep = predict(*p);
+  ASSERT_TRUE(deep.has_predicted_tl_db());
+  EXPECT_NEAR(deep.predicted_tl_db(), 20 * std::log10(300.0), 1.0);
+}
+
 TEST_F(LinkPredictionTest, BadSettingsAreRefusedNamingTheField) {
   try {
     make("source_level_db: 400");

@@ -67,8 +67,12 @@ class TelemetryNodeTest : public ::testing::Test {
                        });
     // As the daemon does with the queue's sequence (QueueManager::take_received_seq).
     if (numbered_) node.number_positions_with([&seq] { return ++seq; });
+    node.on_sequence([this](int32_t src, uint32_t missing, bool replayed) {
+      if (missing > 0) gaps_.push_back({src, missing, replayed});
+    });
     node.restore(stored, events, queues);
     for (size_t i = from; i < to; ++i) {
+      if (lost_.count(i) != 0) continue;  // sent, never received
       queue::QueueEvent event;
       event.kind = queue::QueueEventKind::kReceived;
       event.time = kStart + 10.0 * static_cast<double>(i) + 5;
@@ -125,6 +129,13 @@ class TelemetryNodeTest : public ::testing::Test {
     }
   }
 
+  struct Gap {
+    int32_t src;
+    uint32_t missing;
+    bool replayed;
+  };
+  std::set<size_t> lost_;   // wire_ messages the link never brought
+  std::vector<Gap> gaps_;   // what on_sequence told
   bool numbered_ = false;
   fs::path dir_;
   dccl::Codec codec_;
@@ -261,6 +272,26 @@ TEST_F(TelemetryNodeTest, WhenStoredFromAnotherThreadWhileTheCoreRunsFailsItsAss
       },
       "when_stored.* must run on the core thread");
   writer.stop();
+}
+
+// Packets sent and not received (issue 32): the messages of the stream that
+// never arrived are told through on_sequence once, at the message after
+// the gap, from its sender; the messages consumed again from the event log
+// after a kill tell their gap again only as replayed (the daemon does not
+// count it twice), and the stream goes on after the restart without a
+// false gap.
+TEST_F(TelemetryNodeTest, GapsInTheStreamAreToldOnceFromTheSenderAndAsReplayedAfterAKill) {
+  lost_ = {10, 11, 12, 60};
+  run(0, 50, 100);    // killed with 49 received events (50..99 less 60) not yet consumed
+  ASSERT_EQ(gaps_.size(), 1u);
+  EXPECT_EQ(gaps_[0].src, 2);
+  EXPECT_EQ(gaps_[0].missing, 3u) << "10, 11 and 12";
+  EXPECT_FALSE(gaps_[0].replayed);
+  gaps_.clear();
+  run(100, 150, 150);  // 50..99 consumed at restart, then the rest
+  ASSERT_EQ(gaps_.size(), 1u) << "60's gap, from the replay; nothing after the restart";
+  EXPECT_EQ(gaps_[0].missing, 1u);
+  EXPECT_TRUE(gaps_[0].replayed);
 }
 
 }  // namespace
