@@ -280,24 +280,7 @@ void Daemon::build_telemetry(const telemetry::StoredStreams& /*stored*/) {
   telemetry_->number_positions_with([queues = queues_.get()] { return queues->take_received_seq(); });
   // A gap in a sender's telemetry: packets sent and not received, on the
   // link that last heard it (node/unheard_packets.h).
-  unheard_ = std::make_unique<UnheardPackets>(UnheardPackets::Hooks{
-      [this](int32_t src) {
-        uint64_t lost = 0;
-        for (const auto& link : links_) lost += link->controller().lost_recorded(src);
-        return lost;
-      },
-      [this](int32_t src) {
-        NodeLink* heard_by = nullptr;
-        double newest = 0;
-        for (const auto& link : links_) {
-          std::optional<NodeLink::Heard> heard = link->last_heard(src);
-          if (heard && (heard_by == nullptr || heard->time_s > newest)) {
-            heard_by = link.get();
-            newest = heard->time_s;
-          }
-        }
-        if (heard_by != nullptr) heard_by->record_unheard(src);
-      }});
+  unheard_ = std::make_unique<UnheardPackets>(unheard_on_links(links_));
   telemetry_->on_sequence([unheard = unheard_.get()](int32_t src, uint32_t missing, bool replayed) {
     unheard->on_sequence(src, missing, replayed);
   });

@@ -23,6 +23,7 @@
 #include "node/gram_setup.h"
 #include "node/node_link.h"
 #include "node/received_message_router.h"
+#include "node/unheard_links.h"
 #include "node/unheard_packets.h"
 #include "dccl/codec.h"
 #include "queue/durable_receipts.h"

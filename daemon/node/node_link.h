@@ -46,7 +46,7 @@ struct LinkParts {
   int32_t own_id;
   std::string data_dir;                 // where raw logs go
   int link_count;                       // raw log names: "link-raw.log" when 1
-  core::AsioScheduler& scheduler;
+  core::Scheduler& scheduler;  // the AsioScheduler; a test's SimulatedScheduler
   core::EventLoop& core;
   const link::DriverRegistry& drivers;
   const core::NodePosition& node_position;

@@ -1,0 +1,205 @@
+// The daemon's last step of a telemetry gap (node/unheard_links.h), with
+// real NodeLinks on the simulated clock: two links ("acoustic", "sat") whose
+// drivers are the test's (they deliver what the test says the modem heard
+// and lose silently what the test does not deliver), the node's queues on
+// an in-memory journal, the telemetry sequence (telemetry/sequence_gaps.h)
+// and UnheardPackets over the links, wired as the Daemon wires them.
+// A gap becomes exactly its missing count of packet events, less the
+// losses a link recorded meanwhile, from the sender, on the link that last
+// delivered a message from it, at that link's last rate, not decoded and
+// without measured figures; a late copy makes none. (No prediction here:
+// only a Micro-Modem link with GRAM has one, link_prediction_test.cpp.)
+#include "node/unheard_links.h"
+
+#include <google/protobuf/text_format.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "acomms/v1/link_figures.pb.h"
+#include "core/event_loop.h"
+#include "core/scheduler.h"
+#include "link/driver.h"
+#include "link/driver_registry.h"
+#include "link/link_choice.h"
+#include "queue/memory_journal.h"
+#include "queue/queue_manager.h"
+#include "telemetry/sequence_gaps.h"
+#include "temp_dir.h"
+
+namespace acomms::node {
+namespace {
+
+constexpr int32_t kOwn = 1, kSender = 2;
+
+constexpr const char* kStatusProto = R"(syntax = "proto2";
+import "dccl/option_extensions.proto";
+package net;
+message Status {
+  option (dccl.msg) = { codec_version: 4 id: 10 max_bytes: 32 };
+  required int32 src = 1 [(dccl.field) = { min: 0 max: 127 }];
+  required int32 dest = 2 [(dccl.field) = { min: 0 max: 127 }];
+  required int32 battery = 3 [(dccl.field) = { min: 0 max: 100 }];
+}
+)";
+
+// A modem the test speaks for: what it "hears" goes to the link as is.
+class TestModem final : public link::Driver {
+ public:
+  explicit TestModem(std::vector<TestModem*>& started) : started_(started) {}
+  void start(link::DriverCallbacks callbacks) override {
+    callbacks_ = std::move(callbacks);
+    started_.push_back(this);
+  }
+  void stop() override {}
+  void do_work() override {}
+  void initiate_transmission(const v1::ModemTransmission&) override {}
+  link::DriverCallbacks callbacks_;
+
+ private:
+  std::vector<TestModem*>& started_;
+};
+
+class UnheardLinks : public ::testing::Test {
+ protected:
+  UnheardLinks() {
+    std::ofstream(dir_.path() / "status.proto") << kStatusProto;
+    codec_.load((dir_.path() / "status.proto").string());
+    v1::QueueConfig queue_config;
+    EXPECT_TRUE(google::protobuf::TextFormat::ParseFromString(
+        R"(type { type: "net.Status" roles { source_field: "src" destination_field: "dest" } })", &queue_config));
+    queues_ = std::make_unique<queue::QueueManager>(codec_, queue_config, kOwn, scheduler_.clock(), journal_);
+    queues_->restore();
+    std::vector<v1::LinkConfig> configs(2);
+    const char* cycle = R"(mac { name: "fixed" slot { src: 1 rate: 0 seconds: 10 } slot { src: 2 rate: 0 seconds: 10 } })";
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_TRUE(google::protobuf::TextFormat::ParseFromString(cycle, &configs[i]));
+      configs[i].set_name(i == 0 ? "acoustic" : "sat");
+      configs[i].mutable_driver()->set_name("test");
+      configs[i].mutable_driver()->set_modem_id(kOwn);
+    }
+    choice_ = std::make_unique<link::LinkChoice>(
+        link::LinkChoice::from_config(configs, queue_config, scheduler_.clock().now_seconds()));
+    drivers_.add("test", [this](const link::DriverContext&) { return std::make_unique<TestModem>(modems_); });
+    parts_ = std::make_unique<LinkParts>(LinkParts{
+        .own_id = kOwn,
+        .data_dir = dir_.path().string(),
+        .link_count = 2,
+        .scheduler = scheduler_,
+        .core = core_,
+        .drivers = drivers_,
+        .node_position = node_position_,
+        .models = nullptr,
+        .queues = *queues_,
+        .choice = *choice_,
+        .deliver = [this](queue::ReceivedMessage, const v1::ModemTransmission&) { ++delivered_; },
+        .after_receipt_durable = [](std::function<void()> then) { then(); },
+    });
+    for (int i = 0; i < 2; ++i) links_.push_back(std::make_unique<NodeLink>(configs[i], i, *parts_));
+    for (auto& link : links_) {
+      link->controller().start();
+      scheduler_.run_for(std::chrono::milliseconds(1));  // the supervisor starts its driver
+    }
+    unheard_ = std::make_unique<UnheardPackets>(unheard_on_links(links_));
+  }
+  ~UnheardLinks() override {
+    for (auto& link : links_) link->controller().stop();
+  }
+
+  // Link `index` delivers a Status from the sender, heard at `rate`.
+  void hear(int index, int32_t rate) {
+    ASSERT_EQ(modems_.size(), 2u);
+    auto status = codec_.new_message("net.Status");
+    ASSERT_TRUE(google::protobuf::TextFormat::ParseFromString(
+        "src: 2 dest: 1 battery: " + std::to_string(++battery_), status.get()));
+    v1::ModemTransmission t;
+    t.set_type(v1::ModemTransmission::DATA);
+    t.set_src(kSender);
+    t.set_dest(kOwn);
+    t.set_rate(rate);
+    t.add_frame(codec_.encode(*status));
+    const int before = delivered_;
+    modems_[index]->callbacks_.on_receive(t);
+    ASSERT_EQ(delivered_, before + 1);
+    scheduler_.run_for(std::chrono::seconds(5));
+  }
+  // Link `index`'s modem heard a packet from the sender and could not decode it.
+  void damaged(int index) {
+    v1::ModemTransmission t;
+    t.set_type(v1::ModemTransmission::DATA);
+    t.set_src(kSender);
+    t.set_dest(kOwn);
+    t.set_rate(3);
+    modems_[index]->callbacks_.on_reception_failed(t);
+  }
+  // The sender's telemetry message `sequence` arrived (as TelemetryNode
+  // tells the Daemon).
+  void telemetry(uint32_t sequence) { unheard_->on_sequence(kSender, gaps_.observe(kSender, sequence, false), false); }
+  // Packet events recorded since event `from`, not decoded.
+  std::vector<v1::LinkFigures> lost_since(size_t from) const {
+    std::vector<v1::LinkFigures> lost;
+    std::vector<queue::QueueEvent> events = journal_.events();
+    for (size_t i = from; i < events.size(); ++i) {
+      if (events[i].kind != queue::QueueEventKind::kPacket) continue;
+      v1::LinkFigures f;
+      EXPECT_TRUE(f.ParseFromString(events[i].link_figures.value_or("")));
+      if (!f.decoded()) lost.push_back(f);
+    }
+    return lost;
+  }
+
+  testing::TempDir dir_{"acomms-unheard"};
+  core::SimulatedScheduler scheduler_{core::Clock::time_point(std::chrono::seconds(1'748'772'000))};
+  core::EventLoop core_;
+  dccl::Codec codec_;
+  queue::MemoryJournal journal_;
+  std::unique_ptr<queue::QueueManager> queues_;
+  std::unique_ptr<link::LinkChoice> choice_;
+  link::DriverRegistry drivers_;
+  core::NodePosition node_position_;
+  std::vector<TestModem*> modems_;
+  std::unique_ptr<LinkParts> parts_;
+  std::vector<std::unique_ptr<NodeLink>> links_;
+  std::unique_ptr<UnheardPackets> unheard_;
+  telemetry::SequenceGaps gaps_;
+  int delivered_ = 0;
+  int battery_ = 0;
+};
+
+TEST_F(UnheardLinks, AGapIsLostPacketsOnTheLinkThatLastHeardTheSenderLessWhatItRecorded) {
+  hear(1, 1);  // the satellite link heard it first, at rate 1
+  hear(0, 3);  // then the acoustic link, at rate 3: the newest
+  telemetry(1);
+  damaged(0);  // one of the missing packets the acoustic link saw, damaged
+  size_t mark = journal_.events().size();
+  hear(0, 3);
+  telemetry(5);  // 2, 3 and 4 missing: one the link recorded, two only the gap tells of
+  std::vector<v1::LinkFigures> lost = lost_since(mark);
+  ASSERT_EQ(lost.size(), 2u);
+  for (const v1::LinkFigures& f : lost) {
+    EXPECT_EQ(f.transmission_src(), kSender);
+    EXPECT_EQ(f.link(), "acoustic");
+    EXPECT_EQ(f.rate(), 3);
+    EXPECT_FALSE(f.has_snr_in_db()) << "nothing was measured";
+    EXPECT_FALSE(f.has_predicted_snr_db()) << "no model on this link";
+  }
+  EXPECT_EQ(unheard_->counters().recorded, 2u);
+  EXPECT_EQ(unheard_->counters().link_recorded, 1u);
+
+  mark = journal_.events().size();
+  telemetry(3);  // a late copy: nothing is missing
+  EXPECT_TRUE(lost_since(mark).empty());
+
+  // Now the satellite link is the one that heard it last.
+  hear(1, 1);
+  mark = journal_.events().size();
+  telemetry(7);  // 6 missing
+  lost = lost_since(mark);
+  ASSERT_EQ(lost.size(), 1u);
+  EXPECT_EQ(lost[0].link(), "sat");
+  EXPECT_EQ(lost[0].rate(), 1);
+  EXPECT_EQ(unheard_->counters().recorded, 3u);
+}
+
+}  // namespace
+}  // namespace acomms::node
