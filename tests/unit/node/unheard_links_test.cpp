@@ -7,18 +7,26 @@
 // A gap becomes exactly its missing count of packet events, less the
 // losses a link recorded meanwhile, from the sender, on the link that last
 // delivered a message from it, at that link's last rate, not decoded and
-// without measured figures; a late copy makes none. (No prediction here:
-// only a Micro-Modem link with GRAM has one, link_prediction_test.cpp.)
+// without measured figures, with the model's prediction where the link has
+// one (the acoustic link is a "micromodem" with driver.micromodem.prediction
+// and GRAM's built-in model in free field, as in link_prediction_test.cpp;
+// the satellite link has none); a late copy makes none.
 #include "node/unheard_links.h"
 
 #include <google/protobuf/text_format.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cmath>
 #include <fstream>
+#include <thread>
 
 #include "acomms/v1/link_figures.pb.h"
 #include "core/event_loop.h"
 #include "core/scheduler.h"
+#include "gram/model_engine.h"
+#include "gram/model_pool.h"
+#include "gram/vehicle_environment.h"
 #include "link/driver.h"
 #include "link/driver_registry.h"
 #include "link/link_choice.h"
@@ -31,6 +39,22 @@ namespace acomms::node {
 namespace {
 
 constexpr int32_t kOwn = 1, kSender = 2;
+
+// Free field: TL is spherical spreading, 20 log10(300 m) here.
+constexpr const char* kFreeField = R"(
+  frequency_hz: 25000
+  sound_speed { depth_m: 0 speed_mps: 1500 }
+  sound_speed { depth_m: 100 speed_mps: 1500 }
+  surface { kind: HALF_SPACE half_space { speed_mps: 1500 density_ratio: 1 } }
+  bottom { kind: HALF_SPACE half_space { speed_mps: 1500 density_ratio: 1 } }
+  field_mode: INCOHERENT
+  beam_count: 400
+  launch_angle_min_deg: -80
+  launch_angle_max_deg: 80
+)";
+constexpr const char* kPrediction =
+    "micromodem { prediction { source_level_db: 190 noise_level_db: 85 max_range_m: 1000 range_step_m: 10"
+    " fixed { modem: 1 position { x: 300 y: 0 z: -10 } } fixed { modem: 2 position { x: 0 y: 0 z: -10 } } } }";
 
 constexpr const char* kStatusProto = R"(syntax = "proto2";
 import "dccl/option_extensions.proto";
@@ -63,6 +87,10 @@ class TestModem final : public link::Driver {
 class UnheardLinks : public ::testing::Test {
  protected:
   UnheardLinks() {
+    gram::Environment base;
+    EXPECT_TRUE(google::protobuf::TextFormat::ParseFromString(kFreeField, &base));
+    environment_ = std::make_unique<gram::VehicleEnvironment>(base, gram::VehicleEnvironmentOptions{});
+    pool_ = std::make_unique<gram::ModelPool>(gram::ModelPoolOptions{1, 16, 1 << 20}, gram::make_builtin_engine());
     std::ofstream(dir_.path() / "status.proto") << kStatusProto;
     codec_.load((dir_.path() / "status.proto").string());
     v1::QueueConfig queue_config;
@@ -75,12 +103,15 @@ class UnheardLinks : public ::testing::Test {
     for (int i = 0; i < 2; ++i) {
       EXPECT_TRUE(google::protobuf::TextFormat::ParseFromString(cycle, &configs[i]));
       configs[i].set_name(i == 0 ? "acoustic" : "sat");
-      configs[i].mutable_driver()->set_name("test");
+      if (i == 0) EXPECT_TRUE(google::protobuf::TextFormat::ParseFromString(kPrediction, configs[i].mutable_driver()));
+      configs[i].mutable_driver()->set_name(i == 0 ? "micromodem" : "test");
       configs[i].mutable_driver()->set_modem_id(kOwn);
     }
     choice_ = std::make_unique<link::LinkChoice>(
         link::LinkChoice::from_config(configs, queue_config, scheduler_.clock().now_seconds()));
-    drivers_.add("test", [this](const link::DriverContext&) { return std::make_unique<TestModem>(modems_); });
+    for (const char* name : {"test", "micromodem"}) {
+      drivers_.add(name, [this](const link::DriverContext&) { return std::make_unique<TestModem>(modems_); });
+    }
     parts_ = std::make_unique<LinkParts>(LinkParts{
         .own_id = kOwn,
         .data_dir = dir_.path().string(),
@@ -89,11 +120,13 @@ class UnheardLinks : public ::testing::Test {
         .core = core_,
         .drivers = drivers_,
         .node_position = node_position_,
-        .models = nullptr,
+        .models = pool_.get(),
         .queues = *queues_,
         .choice = *choice_,
         .deliver = [this](queue::ReceivedMessage, const v1::ModemTransmission&) { ++delivered_; },
         .after_receipt_durable = [](std::function<void()> then) { then(); },
+        .modem_positions = &modem_positions_,
+        .environment = environment_.get(),
     });
     for (int i = 0; i < 2; ++i) links_.push_back(std::make_unique<NodeLink>(configs[i], i, *parts_));
     for (auto& link : links_) {
@@ -135,6 +168,16 @@ class UnheardLinks : public ::testing::Test {
   // The sender's telemetry message `sequence` arrived (as TelemetryNode
   // tells the Daemon).
   void telemetry(uint32_t sequence) { unheard_->on_sequence(kSender, gaps_.observe(kSender, sequence, false), false); }
+  // Runs what was posted to the core (the model's grid) on this thread
+  // until `done`, 60 s at most.
+  template <typename F>
+  bool run_core_until(F done) {
+    for (int i = 0; i < 6000 && !done(); ++i) {
+      core_.context().restart();
+      if (core_.context().poll() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return done();
+  }
   // Packet events recorded since event `from`, not decoded.
   std::vector<v1::LinkFigures> lost_since(size_t from) const {
     std::vector<v1::LinkFigures> lost;
@@ -157,6 +200,9 @@ class UnheardLinks : public ::testing::Test {
   std::unique_ptr<link::LinkChoice> choice_;
   link::DriverRegistry drivers_;
   core::NodePosition node_position_;
+  ModemPositions modem_positions_;
+  std::unique_ptr<gram::VehicleEnvironment> environment_;
+  std::unique_ptr<gram::ModelPool> pool_;
   std::vector<TestModem*> modems_;
   std::unique_ptr<LinkParts> parts_;
   std::vector<std::unique_ptr<NodeLink>> links_;
@@ -171,6 +217,9 @@ TEST_F(UnheardLinks, AGapIsLostPacketsOnTheLinkThatLastHeardTheSenderLessWhatItR
   hear(0, 3);  // then the acoustic link, at rate 3: the newest
   telemetry(1);
   damaged(0);  // one of the missing packets the acoustic link saw, damaged
+  // Its event asked the acoustic link's model for its grid: wait for it.
+  ASSERT_NE(links_[0]->prediction(), nullptr);
+  ASSERT_TRUE(run_core_until([&] { return links_[0]->prediction()->counters().grids == 1; }));
   size_t mark = journal_.events().size();
   hear(0, 3);
   telemetry(5);  // 2, 3 and 4 missing: one the link recorded, two only the gap tells of
@@ -181,7 +230,9 @@ TEST_F(UnheardLinks, AGapIsLostPacketsOnTheLinkThatLastHeardTheSenderLessWhatItR
     EXPECT_EQ(f.link(), "acoustic");
     EXPECT_EQ(f.rate(), 3);
     EXPECT_FALSE(f.has_snr_in_db()) << "nothing was measured";
-    EXPECT_FALSE(f.has_predicted_snr_db()) << "no model on this link";
+    ASSERT_TRUE(f.has_predicted_snr_db()) << "the acoustic link's model";
+    EXPECT_NEAR(f.predicted_tl_db(), 20 * std::log10(300.0), 1.0);
+    EXPECT_NEAR(f.predicted_snr_db(), 190 - f.predicted_tl_db() - 85, 1e-9);
   }
   EXPECT_EQ(unheard_->counters().recorded, 2u);
   EXPECT_EQ(unheard_->counters().link_recorded, 1u);
@@ -198,6 +249,8 @@ TEST_F(UnheardLinks, AGapIsLostPacketsOnTheLinkThatLastHeardTheSenderLessWhatItR
   ASSERT_EQ(lost.size(), 1u);
   EXPECT_EQ(lost[0].link(), "sat");
   EXPECT_EQ(lost[0].rate(), 1);
+  EXPECT_FALSE(lost[0].has_predicted_snr_db()) << "no model on the satellite link";
+  EXPECT_FALSE(lost[0].has_snr_in_db());
   EXPECT_EQ(unheard_->counters().recorded, 3u);
 }
 
