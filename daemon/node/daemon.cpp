@@ -297,6 +297,17 @@ void Daemon::build_telemetry(const telemetry::StoredStreams& /*stored*/) {
           }
         }
         if (heard_by != nullptr) heard_by->record_unheard(src);
+      },
+      [this](int32_t src) {
+        // The link that delivered the message after the gap heard the
+        // sender last; another within the window makes it several.
+        std::vector<double> times;
+        for (const auto& link : links_) {
+          if (std::optional<NodeLink::Heard> heard = link->last_heard(src)) times.push_back(heard->time_s);
+        }
+        if (times.size() < 2) return false;
+        std::sort(times.begin(), times.end());
+        return times[times.size() - 1] - times[times.size() - 2] <= UnheardPackets::kSeveralLinks_s;
       }});
   telemetry_->on_sequence([unheard = unheard_.get()](int32_t src, uint32_t missing, bool replayed) {
     unheard->on_sequence(src, missing, replayed);
