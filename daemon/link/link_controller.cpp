@@ -298,7 +298,18 @@ void LinkController::record_packet(const v1::ModemTransmission& transmission, bo
   const v1::ReceptionFigures& f = transmission.figures();
   if (f.frames() > 0 && f.bad_frames() >= f.frames()) decoded = false;
   figures.set_decoded(decoded);
-  if (!decoded) ++lost_recorded_[transmission.src()];
+  // What telemetry (to this node or broadcast) lost in this packet, as the
+  // link saw it: one per bad frame (a frame usually carries one message),
+  // at least one for a packet that did not decode; overheard traffic to
+  // others is no part of the gap (lost_recorded).
+  if (transmission.dest() == own_id_ || transmission.dest() == queue::kBroadcast) {
+    const uint64_t bad = f.bad_frames();
+    if (!decoded) {
+      lost_recorded_[transmission.src()] += std::max<uint64_t>(bad, 1);
+    } else if (bad > 0) {
+      lost_recorded_[transmission.src()] += bad;
+    }
+  }
   figures.clear_link_quality();  // the same figures again, as text: not worth a row each
   // Which link heard it (a node with several is calibrated link by link),
   // and the model's prediction when the driver has none (a real modem).

@@ -109,10 +109,14 @@ class LinkController {
   void on_driver_state(bool up);
 
   const LinkStats& stats() const { return stats_; }
-  // Packets from `src` recorded as heard and not decoded (packet events
-  // with decoded false: the driver's on_reception_failed, or every frame
-  // bad), since the start. A telemetry gap counts only the losses this
-  // link did not already record (node/unheard_packets.h). Core thread.
+  // Messages from `src` to this node (or broadcast) that this link's
+  // packet events already tell were lost, since the start: a packet heard
+  // and not decoded (the driver's on_reception_failed, or every frame bad)
+  // counts its bad frames, at least one; a decoded packet with bad frames
+  // (a PSK packet whose first frame failed) counts those. Packets
+  // overheard between other nodes are not counted. A telemetry gap counts
+  // only the losses this link did not already record
+  // (node/unheard_packets.h). Core thread.
   uint64_t lost_recorded(int32_t src) const {
     auto it = lost_recorded_.find(src);
     return it == lost_recorded_.end() ? 0 : it->second;

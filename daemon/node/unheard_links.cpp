@@ -1,6 +1,8 @@
 #include "node/unheard_links.h"
 
+#include <algorithm>
 #include <optional>
+#include <vector>
 
 namespace acomms::node {
 
@@ -22,6 +24,17 @@ UnheardPackets::Hooks unheard_on_links(const std::vector<std::unique_ptr<NodeLin
           }
         }
         if (heard_by != nullptr) heard_by->record_unheard(src);
+      },
+      [&links](int32_t src) {
+        // The link that delivered the message after the gap heard the
+        // sender last; another within the window makes it several.
+        std::vector<double> times;
+        for (const auto& link : links) {
+          if (std::optional<NodeLink::Heard> heard = link->last_heard(src)) times.push_back(heard->time_s);
+        }
+        if (times.size() < 2) return false;
+        std::sort(times.begin(), times.end());
+        return times[times.size() - 1] - times[times.size() - 2] <= UnheardPackets::kSeveralLinks_s;
       }};
 }
 

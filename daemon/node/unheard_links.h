@@ -6,7 +6,9 @@
 // (a sender heard on two links may have lost packets on either); the
 // unheard packets go to the one link that last delivered a message from
 // the sender (NodeLink::last_heard), the link it was talking to when the
-// gap opened; none when no link ever heard it. Kept out of the Daemon so
+// gap opened; none when no link ever heard it. No gap is counted while two links heard the
+// sender within UnheardPackets::kSeveralLinks_s of each other (its messages
+// may be in flight on the other). Kept out of the Daemon so
 // that a test drives the same choice with links of its own.
 //
 // Core thread only (the hooks call NodeLink and LinkController).

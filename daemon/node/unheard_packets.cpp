@@ -17,6 +17,10 @@ void UnheardPackets::on_sequence(int32_t src, uint32_t missing, bool replayed) {
     counters_.replayed += missing;
     return;
   }
+  if (hooks_.several_links && hooks_.several_links(src)) {
+    counters_.several_links += missing;
+    return;
+  }
   const uint64_t already = std::min<uint64_t>(since, missing);
   counters_.link_recorded += already;
   for (uint64_t i = already; i < missing; ++i) {

@@ -20,6 +20,14 @@
 // interpolate to). A gap told again from the event log at start (replayed)
 // is not counted: it was when it first came.
 //
+// A gap is also not counted while the sender is heard on more than one of
+// this node's links (each heard from it within kSeveralLinks_s of the
+// other): its messages may be in flight on the other link (a newer one
+// arriving acoustically before older ones on Iridium), and which link lost
+// what cannot be told. Not told apart (README, calibration, Limits): a
+// message the sender dropped unsent (expired, refused) leaves a gap
+// counted as a lost packet.
+//
 // Core thread only.
 
 #include <cstdint>
@@ -35,7 +43,11 @@ class UnheardPackets {
     std::function<uint64_t(int32_t src)> lost_recorded;
     // Records one packet from `src` sent and not received (an event).
     std::function<void(int32_t src)> record;
+    // Whether more than one link heard `src` within kSeveralLinks_s of
+    // each other (null: one link).
+    std::function<bool(int32_t src)> several_links;
   };
+  static constexpr double kSeveralLinks_s = 3600;
   explicit UnheardPackets(Hooks hooks) : hooks_(std::move(hooks)) {}
 
   // TelemetryNode::on_sequence.
@@ -45,6 +57,7 @@ class UnheardPackets {
     uint64_t recorded = 0;       // unheard packet events
     uint64_t link_recorded = 0;  // missing messages the link had recorded lost already
     uint64_t replayed = 0;       // missing messages of a replay: not counted again
+    uint64_t several_links = 0;  // missing while the sender was heard on several links
   };
   const Counters& counters() const { return counters_; }
 

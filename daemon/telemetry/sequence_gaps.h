@@ -23,9 +23,11 @@
 //   the stream's receiver took the message as a fresh start (the sender
 //   restarted without its state and counts anew, stream_receiver.h): a
 //   new baseline, nothing counted.
-// A gap across this node's own restart is not counted (the newest seen is
-// not kept; messages consumed again from the event log at start only set
-// the baseline). Each missing message counts as one packet: telemetry
+// A gap across this node's own restart is never counted: the newest seen
+// is not kept, and messages consumed again from the event log at start
+// (whose gaps are told as replayed, not counted again) are forgotten once
+// the replay is done (forget), so the first live message from each
+// sender is a new baseline. Each missing message counts as one packet: telemetry
 // sends a message per sample and a slot's packet usually carries one; a
 // packet carrying two is then counted twice, one whose telemetry went in a
 // later packet is not counted at all (documented in the README).
@@ -52,6 +54,10 @@ class SequenceGaps {
   // stream took it as the sender counting anew. Returns how many messages
   // before it never arrived (see above).
   uint32_t observe(int32_t src, uint32_t sequence, bool fresh_start);
+
+  // Every sender's newest seen dropped: the next message from each is a
+  // baseline (after this node's own restart, TelemetryNode::restore).
+  void forget() { newest_.clear(); }
 
   const SequenceGapCounters& counters() const { return counters_; }
 

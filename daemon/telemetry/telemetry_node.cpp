@@ -94,6 +94,9 @@ void TelemetryNode::restore(const StoredStreams& stored, queue::EventLogReader& 
     }
   }
   if (replayed > 0) spdlog::info("telemetry: {} received message{} consumed again after a restart", replayed, replayed == 1 ? "" : "s");
+  // What this node missed while it was down is no gap (sequence_gaps.h):
+  // the first live message from each sender is a new baseline.
+  gaps_.forget();
 }
 
 size_t TelemetryNode::on_fix(const Fix& fix) {

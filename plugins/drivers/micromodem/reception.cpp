@@ -142,9 +142,15 @@ void Reception::close(const nmea::ReceiveStatistics* statistics) {
     const bool damaged = statistics->mode == 1 || (record.bad_frames > 0 && statistics->mode != 2);
     if (!damaged && statistics->mode != 2) return note_cycle_init(record, *statistics);
     // A damaged mini-packet (a cycle-init or an ACK, BAD_CRC value 2) is no
-    // data packet lost; the packet a cycle-init announced is still awaited.
+    // data packet lost. It is the next packet, though: an announcement
+    // heard before it is forgotten, or a cycle-init we could not read (of
+    // another sender) would leave its data packet credited to the earlier
+    // sender whose data never came.
     const bool mini = statistics->packet_type == nmea::kPacketFskMini || statistics->packet_type == nmea::kPacketPskMini;
-    if (damaged && mini) return;
+    if (damaged && mini) {
+      announced_.reset();
+      return;
+    }
     std::optional<Expected> from;
     if (record.cycle) {
       from = Expected{record.cycle->source, record.cycle->destination, record.cycle->rate};

@@ -34,7 +34,8 @@
 // trusted. Also unsettled by the spec: whether a third modem that only
 // overheard a cycle-init prints PACKET_TIMEOUT when the data never comes
 // (when it does, it is told; when it does not, the announcement is
-// forgotten at the next packet or after kAnnouncementLife_s).
+// forgotten at the next packet, a damaged mini-packet included, or after
+// kAnnouncementLife_s).
 //
 // Core thread only.
 

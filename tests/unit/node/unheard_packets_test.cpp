@@ -14,8 +14,10 @@ namespace {
 class UnheardPacketsTest : public ::testing::Test {
  protected:
   UnheardPackets unheard_{{[this](int32_t src) { return link_lost_[src]; },
-                           [this](int32_t src) { recorded_.push_back(src); }}};
+                           [this](int32_t src) { recorded_.push_back(src); },
+                           [this](int32_t src) { return several_[src]; }}};
   std::map<int32_t, uint64_t> link_lost_;  // what the links recorded lost, by sender
+  std::map<int32_t, bool> several_;        // heard on several links of late, by sender
   std::vector<int32_t> recorded_;          // unheard packet events, by sender
 };
 
@@ -50,6 +52,20 @@ TEST_F(UnheardPacketsTest, AReplayedGapIsNotCountedAgain) {
   unheard_.on_sequence(2, 4, true);
   EXPECT_TRUE(recorded_.empty());
   EXPECT_EQ(unheard_.counters().replayed, 4u);
+}
+
+// A sender heard on two links: a gap may be messages still in flight on the
+// other link (Iridium behind an acoustic newer one), not counted; once it
+// is heard on one link only, gaps count again.
+TEST_F(UnheardPacketsTest, AGapIsNotCountedWhileTheSenderIsHeardOnSeveralLinks) {
+  unheard_.on_sequence(2, 0, false);
+  several_[2] = true;
+  unheard_.on_sequence(2, 2, false);
+  EXPECT_TRUE(recorded_.empty());
+  EXPECT_EQ(unheard_.counters().several_links, 2u);
+  several_[2] = false;
+  unheard_.on_sequence(2, 1, false);
+  EXPECT_EQ(recorded_, (std::vector<int32_t>{2}));
 }
 
 }  // namespace

@@ -294,5 +294,19 @@ TEST_F(TelemetryNodeTest, GapsInTheStreamAreToldOnceFromTheSenderAndAsReplayedAf
   EXPECT_TRUE(gaps_[0].replayed);
 }
 
+// A gap across this node's own restart is never counted: killed with 40..49
+// received and not yet consumed (replayed at restart, then forgotten),
+// down while 50..54 were sent, then live from 55: no gap for 50..54,
+// though the replay ended at 49; a later gap is counted as before.
+TEST_F(TelemetryNodeTest, NoGapIsCountedAcrossThisNodesOwnRestart) {
+  run(0, 40, 50);
+  EXPECT_TRUE(gaps_.empty());
+  lost_ = {70};
+  run(55, 150, 150);
+  ASSERT_EQ(gaps_.size(), 1u) << "70's only: 50..54 went by while this node was down";
+  EXPECT_EQ(gaps_[0].missing, 1u);
+  EXPECT_FALSE(gaps_[0].replayed);
+}
+
 }  // namespace
 }  // namespace acomms::telemetry
