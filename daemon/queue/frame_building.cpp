@@ -173,8 +173,14 @@ std::vector<Frame> QueueManager::build_frames(const DataRequest& request) {
     }
     frame.bytes += owed;
     if (frame.bytes.empty()) break;
-    // A frame of owed bytes only is for whoever hears it.
-    frame.dest = dest == kAnyDestination ? kBroadcast : dest;
+    // A frame of owed bytes only is for whoever hears it, and so is the
+    // rest of its transmission: one transmission has one destination (its
+    // first frame's, link_controller.cpp), so no later frame may take a
+    // unicast message that would await an ACK that transmission never asks
+    // for (it would be sent again, and a type without duplicate_filter
+    // delivered twice). Unicast messages go in the next transmission.
+    if (dest == kAnyDestination) dest = kBroadcast;
+    frame.dest = dest;
     frames.push_back(std::move(frame));
   }
   if (piggyback_ != nullptr) add_piggyback(request, dest, now, &frames);

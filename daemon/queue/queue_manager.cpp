@@ -348,8 +348,9 @@ void QueueManager::expire() {
   double now = clock_.now_seconds();
   for (auto& [id, state] : by_id_) {
     for (const QueuedMessage& m : state.queue->take_expired(now)) {
-      if (routing_ != nullptr) routing_->expired(*state.queue, m, now);
-      emit(state, now, {.kind = QueueEventKind::kExpired, .message = m.record, .detail = "ttl passed",
+      std::string detail = routing_ != nullptr ? routing_->expired(*state.queue, m, now) : "";
+      if (detail.empty()) detail = "ttl passed";
+      emit(state, now, {.kind = QueueEventKind::kExpired, .message = m.record, .detail = detail,
                         .removes_message = true});
     }
   }

@@ -85,8 +85,9 @@ class Routing {
   // What the acked event of `message` adds ("" for none): a wrapped one's
   // ACK is a hop's, not its destination's.
   virtual std::string acked_detail(const Queue& queue, const QueuedMessage& message) = 0;
-  // `message` of `queue` expired here (before the expired event).
-  virtual void expired(const Queue& queue, const QueuedMessage& message, double now) = 0;
+  // `message` of `queue` expired here (before the expired event): what
+  // that event's detail says instead of "ttl passed" ("" for that).
+  virtual std::string expired(const Queue& queue, const QueuedMessage& message, double now) = 0;
 
   // Custody receipts on a link whose modem ACKs (route/custody_receipt.h).
   // Whether `message` of `queue`, whose frame `link` just acknowledged,

@@ -264,15 +264,24 @@ queue::RoutedForm Forwarder::outgoing(const queue::Queue& queue, const queue::Qu
   using Kind = queue::RoutedForm::Kind;
   const bool custody = is_custody(queue.type());
   const int32_t dest = message.record.dest;
+  // Its modem ACKed it on the last offer; the next hop's custody receipt
+  // is awaited (forwarder_custody.cpp). Before any other answer: the next
+  // hop may hold a copy and pass it on, so it may not go again in any
+  // form meanwhile, not even plain to a destination that became a
+  // neighbour (its delivery would not be known as a copy there).
+  if (awaiting_custody_receipt(queue, message, now)) return hold();
   if (!custody && (dest == queue::kBroadcast || dest == own_id_)) return {};
   std::optional<NextHop> next = table_.next_hop(dest, now);
   if (!next) return hold();  // waits for a route
-  if (!custody && next->node == dest) return {};  // a neighbour: plain DCCL
+  if (!custody && next->node == dest) {
+    // A neighbour: plain DCCL. An earlier wrapped send's note is stale
+    // now: a modem ACK of this plain frame must not hold it for a receipt.
+    wrapped_.erase(message.record.id);
+    offers_.erase(message.record.id);
+    return {};
+  }
   if (next->link != link_name(request.link)) return hold();
   Envelope e;
-  // Its modem ACKed it on the last offer; the next hop's custody receipt
-  // is awaited (forwarder_custody.cpp).
-  if (awaiting_custody_receipt(queue, message, now)) return hold();
   if (custody) {
     std::optional<Envelope> held = held_envelope(message, envelope_id_);
     if (!held) return hold();  // cannot happen: we wrote it

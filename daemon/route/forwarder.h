@@ -48,7 +48,10 @@
 //    identities.h). Then an end-to-end ack (route/receipt.h) goes back to
 //    the origin, routed and with custody like any message.
 //  - Expiry. A message whose ttl runs out in custody here (or that arrives
-//    with none left) is reported to its origin, if a route back exists now.
+//    with none left) is reported to its origin, if a route back exists now;
+//    not one held for its next hop's custody receipt after that hop's modem
+//    ACKed it (the next hop most likely holds it: only logged, its expired
+//    event says so, and the origin waits for the end-to-end ack).
 //  - Origin. A receipt for this node is logged as an event of the message
 //    it is about: "delivered" (end-to-end ack), or "expired" with where;
 //    its hop ACK was "acked" ("hop ack from node 2").
@@ -108,6 +111,8 @@ struct ForwarderStats {
   uint64_t custody_receipts_received = 0;  // ... heard about a message this node held for one
   uint64_t custody_receipts_ignored = 0;   // ... about nothing this node waits for, or from another node
   uint64_t custody_reoffered = 0;          // messages offered again: refused, or no receipt in time
+  uint64_t custody_receipts_dropped = 0;   // owed receipts dropped at their bound ("refused" ones only)
+  uint64_t expired_awaiting_receipt = 0;   // ttl ran out here while held for a next hop's receipt
   // Receipts (end-to-end or custody) refused: unsealed, forged or stale
   // while auth is configured (route/receipt_seal.h).
   uint64_t receipts_refused = 0;
@@ -183,7 +188,7 @@ class Forwarder final : public queue::Routing {
   std::string on_sent(const queue::Queue& queue, const queue::QueuedMessage& message, const queue::RoutedForm& form,
                       double now) override;
   std::string acked_detail(const queue::Queue& queue, const queue::QueuedMessage& message) override;
-  void expired(const queue::Queue& queue, const queue::QueuedMessage& message, double now) override;
+  std::string expired(const queue::Queue& queue, const queue::QueuedMessage& message, double now) override;
 
  private:
   // forwarder_receipts.cpp: a receipt about (origin, seq) from here to
@@ -206,6 +211,9 @@ class Forwarder final : public queue::Routing {
   bool awaiting_custody_receipt(const queue::Queue& queue, const queue::QueuedMessage& message, double now);
   void note_wrapped_send(const queue::QueuedMessage& message, const queue::RoutedForm& form);
   void forget_sent(int64_t message_id);
+  // Drops the notes (wrapped_, held_for_receipt_, offers_) of messages no
+  // longer in any queue: called when one of them reaches its bound.
+  void forget_gone();
   bool holds(const MessageIdentity& identity) const;
   const std::string& link_name(int link) const;
   // The fleet's authenticator, or null: receipts sealed and checked with it
@@ -248,7 +256,9 @@ class Forwarder final : public queue::Routing {
   // Custody being journaled that came on a modem-ACK link: its receipt
   // goes once the commit is done (link, previous hop).
   std::map<MessageIdentity, std::pair<int, int32_t>> receipt_on_commit_;
-  // Wrapped sends awaiting their link's ACK, by journal id (bounded).
+  // Wrapped sends awaiting their link's ACK, by journal id. Bounded by the
+  // queues' own bounds: a note is dropped only once its message left every
+  // queue (forget_gone), never while it may still be ACKed.
   std::map<int64_t, HeldForReceipt> wrapped_;
   std::map<int64_t, HeldForReceipt> held_for_receipt_;
   std::map<int64_t, int> offers_;  // offers so far of a held message (back-off)

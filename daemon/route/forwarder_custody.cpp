@@ -10,8 +10,10 @@
 // outgoing() holds it back until its wait runs out (receipt_wait_s: 600 s
 // after the first offer, doubling to an hour), when it is offered again
 // (a retry event). "taken" from that next hop ends it (an acked event);
-// "refused" starts the next, longer wait. Its ttl still counts (expiry
-// drops it as any queued message), nothing is sent while it waits (no busy
+// "refused" starts that offer's wait again (one doubling per offer, not
+// per answer). Its ttl still counts (expiry drops it as any queued
+// message, but reports no expiry to its origin: forwarder_receipts.cpp),
+// it goes nowhere in any form meanwhile, nothing is sent while it waits (no busy
 // loop), and the notes are in memory only: after a restart the journal
 // gives the message back as queued, and it is offered again at once.
 //
@@ -24,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "core/core_thread.h"
 #include "route/forwarder.h"
@@ -37,7 +40,14 @@ namespace {
 
 constexpr double kFirstReceiptWaitS = 600;  // an Iridium buoy's next sessions come within this
 constexpr double kLongestReceiptWaitS = 3600;
-constexpr size_t kMaxWrappedNotes = 4096;  // wrapped sends awaiting their link's ACK
+// Notes of sent messages (wrapped_, held_for_receipt_, offers_): past
+// this, those of messages no longer queued are dropped (forget_gone); a
+// queued message's never is, so the queues' own bounds bound them.
+constexpr size_t kMaxSentNotes = 4096;
+// Receipts owed to previous hops: past this, the oldest "refused" one is
+// dropped (its sender offers again after its wait, no loss); a "taken" one
+// never is (without it the sender would offer a message held here again).
+constexpr size_t kMaxOwedReceipts = 1024;
 
 }  // namespace
 
@@ -51,6 +61,20 @@ void Forwarder::owe_custody_receipt(int link, int32_t to, MessageIdentity about,
     if (owed.link == link && owed.to == to && owed.about == about) {
       owed.taken = taken;  // the latest word on it
       return;
+    }
+  }
+  if (owed_.size() >= kMaxOwedReceipts) {
+    auto refused = std::find_if(owed_.begin(), owed_.end(), [](const OwedReceipt& o) { return !o.taken; });
+    if (refused == owed_.end() && !taken) {
+      ++stats_.custody_receipts_dropped;
+      spdlog::warn("route: custody receipt refused of message {}/{} to node {} dropped: {} owed already", about.origin,
+                   about.seq, to, owed_.size());
+      return;
+    }
+    if (refused != owed_.end()) {
+      ++stats_.custody_receipts_dropped;
+      spdlog::warn("route: {} custody receipts owed: the oldest refused one dropped", owed_.size());
+      owed_.erase(refused);
     }
   }
   owed_.push_back({link, to, about, taken});
@@ -83,8 +107,23 @@ void Forwarder::note_wrapped_send(const queue::QueuedMessage& message, const que
   if (!e) return;
   // A new offer: no longer waiting for the last one's receipt.
   held_for_receipt_.erase(message.record.id);
-  if (wrapped_.size() >= kMaxWrappedNotes) wrapped_.erase(wrapped_.begin());  // the oldest id
+  if (wrapped_.size() >= kMaxSentNotes) forget_gone();
   wrapped_[message.record.id] = {e->identity(), message.record.type, form.next_hop, e->destination, 0};
+}
+
+void Forwarder::forget_gone() {
+  std::set<int64_t> queued;
+  for (const queue::Queue* queue : queues_.queues()) {
+    for (const queue::QueuedMessage& m : queue->messages()) queued.insert(m.record.id);
+  }
+  auto prune = [&queued](auto& notes) {
+    for (auto it = notes.begin(); it != notes.end();) {
+      it = queued.count(it->first) > 0 ? std::next(it) : notes.erase(it);
+    }
+  };
+  prune(wrapped_);
+  prune(held_for_receipt_);
+  prune(offers_);
 }
 
 void Forwarder::forget_sent(int64_t message_id) {
@@ -106,6 +145,8 @@ bool Forwarder::keeps_after_ack(const queue::Queue& /*queue*/, const queue::Queu
     offers_.erase(message.record.id);
     return false;
   }
+  if (held_for_receipt_.size() >= kMaxSentNotes || offers_.size() >= kMaxSentNotes) forget_gone();
+  // One offer, one doubling (a refusal of it does not double it again).
   const int offers = ++offers_[message.record.id];
   held.until = now + receipt_wait_s(offers);
   spdlog::debug("route: message {} ({}/{}) ACKed by the modem of link {}: kept until node {}'s custody receipt",
@@ -173,7 +214,7 @@ queue::EnvelopeOutcome Forwarder::on_custody_receipt(std::string_view rest, int3
   // Refused: offered again after a longer wait. One still awaiting its
   // modem's ACK is held at that ACK anyway.
   if (!is_held) return done();
-  const int offers = ++offers_[id];
+  const int offers = std::max(offers_[id], 1);  // this offer's wait, counted at its ACK
   held->second.until = now + receipt_wait_s(offers);
   held->second.refused = true;
   queue::JournalMessage record;

@@ -157,11 +157,28 @@ std::string Forwarder::acked_detail(const queue::Queue& queue, const queue::Queu
          std::to_string(send->dest);
 }
 
-void Forwarder::expired(const queue::Queue& queue, const queue::QueuedMessage& message, double now) {
+std::string Forwarder::expired(const queue::Queue& queue, const queue::QueuedMessage& message, double now) {
   ACOMMS_ASSERT_CORE_THREAD();
+  // Held for its next hop's custody receipt, its modem having ACKed it: the
+  // next hop most likely holds it and passes it on (only its receipt was
+  // lost). An expiry report would make the origin drop its note (a later
+  // end-to-end ack ignored, a resend delivered twice): none goes; the
+  // origin hears the end-to-end ack, or an expiry report from downstream.
+  auto held = held_for_receipt_.find(message.record.id);
+  const bool awaiting = held != held_for_receipt_.end() && !held->second.refused;
+  const int32_t next_hop = awaiting ? held->second.next_hop : 0;
   forget_sent(message.record.id);
-  if (!is_custody(queue.type())) return;
+  if (awaiting) {
+    ++stats_.expired_awaiting_receipt;
+    const std::string detail = "ttl ran out awaiting node " + std::to_string(next_hop) +
+                               "'s custody receipt; node " + std::to_string(next_hop) +
+                               "'s modem had acknowledged it (not reported as expired to its origin)";
+    spdlog::warn("route: message {} ({}): {}", message.record.id, queue.type(), detail);
+    return detail;
+  }
+  if (!is_custody(queue.type())) return "";
   if (std::optional<Envelope> e = held_envelope(message, envelope_id_)) report_expired(*e, now);
+  return "";
 }
 
 }  // namespace acomms::route

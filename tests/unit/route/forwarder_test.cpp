@@ -87,8 +87,9 @@ TEST_F(ForwarderTest, CustodyQueuesTakeTheirPriorityFromTheirName) {
   auto policy = forwarder.custody_policy("acomms.route.Custody.v15");
   ASSERT_TRUE(policy);
   EXPECT_DOUBLE_EQ(policy->value_base, 1.5);
-  // Twice routing.max_custody: the room a link whose modem ACKs in
-  // hardware may push custody into (Forwarder::take_custody).
+  // Twice routing.max_custody: room, at restore, for custody taken over
+  // the bound before custody receipts; take_custody now refuses at the
+  // bound on every link (a modem-ACK link answers with a receipt).
   EXPECT_EQ(policy->max_queue, 14u);
   EXPECT_DOUBLE_EQ(policy->ttl_s, 1800);
   EXPECT_FALSE(policy->newest_first);
