@@ -214,7 +214,10 @@ class UnheardLinks : public ::testing::Test {
 
 TEST_F(UnheardLinks, AGapIsLostPacketsOnTheLinkThatLastHeardTheSenderLessWhatItRecorded) {
   hear(1, 1);  // the satellite link heard it first, at rate 1
-  hear(0, 3);  // then the acoustic link, at rate 3: the newest
+  // More than kSeveralLinks_s later (else its messages could be in flight
+  // on either link, and no gap is counted: below) ...
+  scheduler_.run_for(std::chrono::seconds(static_cast<int>(UnheardPackets::kSeveralLinks_s) + 100));
+  hear(0, 3);  // ... the acoustic link, at rate 3: the newest
   telemetry(1);
   damaged(0);  // one of the missing packets the acoustic link saw, damaged
   // Its event asked the acoustic link's model for its grid: wait for it.
@@ -241,10 +244,19 @@ TEST_F(UnheardLinks, AGapIsLostPacketsOnTheLinkThatLastHeardTheSenderLessWhatItR
   telemetry(3);  // a late copy: nothing is missing
   EXPECT_TRUE(lost_since(mark).empty());
 
-  // Now the satellite link is the one that heard it last.
+  // The satellite link hears it too, within the hour: a gap now may be
+  // messages still in flight on the other link, so none is counted.
   hear(1, 1);
   mark = journal_.events().size();
   telemetry(7);  // 6 missing
+  EXPECT_TRUE(lost_since(mark).empty());
+  EXPECT_EQ(unheard_->counters().recorded, 2u);
+
+  // Over an hour later only the satellite link hears it: the gap is its.
+  scheduler_.run_for(std::chrono::seconds(static_cast<int>(UnheardPackets::kSeveralLinks_s) + 100));
+  hear(1, 1);
+  mark = journal_.events().size();
+  telemetry(9);  // 8 missing
   lost = lost_since(mark);
   ASSERT_EQ(lost.size(), 1u);
   EXPECT_EQ(lost[0].link(), "sat");
