@@ -17,21 +17,13 @@
 #include "gram/model_engine.h"
 #include "gram/model_pool.h"
 #include "gram/vehicle_environment.h"
+#include "free_field_environment.h"
 
 namespace acomms::node {
 namespace {
 
-constexpr const char* kFreeField = R"(
-  frequency_hz: 25000
-  sound_speed { depth_m: 0 speed_mps: 1500 }
-  sound_speed { depth_m: 100 speed_mps: 1500 }
-  surface { kind: HALF_SPACE half_space { speed_mps: 1500 density_ratio: 1 } }
-  bottom { kind: HALF_SPACE half_space { speed_mps: 1500 density_ratio: 1 } }
-  field_mode: INCOHERENT
-  beam_count: 400
-  launch_angle_min_deg: -80
-  launch_angle_max_deg: 80
-)";
+// Free field (free_field_environment.h): TL is 20 log10(r).
+constexpr const char* kFreeField = acomms::test::kFreeFieldEnvironment;
 
 class LinkPredictionTest : public ::testing::Test {
  protected:

@@ -34,24 +34,15 @@
 #include "queue/queue_manager.h"
 #include "telemetry/sequence_gaps.h"
 #include "temp_dir.h"
+#include "free_field_environment.h"
 
 namespace acomms::node {
 namespace {
 
 constexpr int32_t kOwn = 1, kSender = 2;
 
-// Free field: TL is spherical spreading, 20 log10(300 m) here.
-constexpr const char* kFreeField = R"(
-  frequency_hz: 25000
-  sound_speed { depth_m: 0 speed_mps: 1500 }
-  sound_speed { depth_m: 100 speed_mps: 1500 }
-  surface { kind: HALF_SPACE half_space { speed_mps: 1500 density_ratio: 1 } }
-  bottom { kind: HALF_SPACE half_space { speed_mps: 1500 density_ratio: 1 } }
-  field_mode: INCOHERENT
-  beam_count: 400
-  launch_angle_min_deg: -80
-  launch_angle_max_deg: 80
-)";
+// Free field (free_field_environment.h): TL is 20 log10(r).
+constexpr const char* kFreeField = acomms::test::kFreeFieldEnvironment;
 constexpr const char* kPrediction =
     "micromodem { prediction { source_level_db: 190 noise_level_db: 85 max_range_m: 1000 range_step_m: 10"
     " fixed { modem: 1 position { x: 300 y: 0 z: -10 } } fixed { modem: 2 position { x: 0 y: 0 z: -10 } } } }";
